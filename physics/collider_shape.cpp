@@ -1,0 +1,153 @@
+#include "collider_shape.h"
+
+#include <BulletCollision/CollisionShapes/btTriangleIndexVertexArray.h>
+#include <btBulletCollisionCommon.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "bullet_convert.h"
+
+namespace physhand {
+
+namespace {
+
+// Bullet's 4 cm default margin is larger than a hand-sized object: thin margins keep
+// boxes square-cornered and contacts where the surface is.
+constexpr btScalar kMargin = 0.001f;
+
+[[noreturn]] void fail(const Collider& c, const std::string& what) {
+    throw std::invalid_argument("collider \"" + c.id + "\": " + what);
+}
+
+void require_positive(const Collider& c, double v, const char* field) {
+    if (!std::isfinite(v) || v <= 0.0) fail(c, std::string(field) + " must be finite and > 0");
+}
+
+}  // namespace
+
+ColliderShape::ColliderShape() = default;
+ColliderShape::~ColliderShape() = default;
+ColliderShape::ColliderShape(ColliderShape&&) noexcept = default;
+ColliderShape& ColliderShape::operator=(ColliderShape&&) noexcept = default;
+
+void validate_collider(const Collider& c) {
+    const Shape& s = c.shape;
+    switch (s.kind) {
+        case ShapeKind::Box:
+            for (int i = 0; i < 3; ++i) require_positive(c, s.half_extents[i], "half_extents");
+            break;
+        case ShapeKind::Sphere:
+            require_positive(c, s.radius, "radius");
+            break;
+        case ShapeKind::Capsule:
+            require_positive(c, s.radius, "radius");
+            if (!std::isfinite(s.half_height) || s.half_height < 0.0) {
+                fail(c, "half_height must be finite and >= 0");
+            }
+            break;
+        case ShapeKind::Cylinder:
+            require_positive(c, s.radius, "radius");
+            require_positive(c, s.half_height, "half_height");
+            break;
+        case ShapeKind::Convex:
+            if (s.vertices.size() < 4) fail(c, "a convex hull needs at least 4 vertices");
+            break;
+        case ShapeKind::Mesh:
+            if (s.vertices.size() < 3 || s.indices.empty()) {
+                fail(c, "a mesh needs at least 3 vertices and 1 triangle");
+            }
+            for (const auto& tri : s.indices) {
+                for (int i : tri) {
+                    if (i < 0 || static_cast<std::size_t>(i) >= s.vertices.size()) {
+                        fail(c, "mesh index " + std::to_string(i) + " out of range");
+                    }
+                }
+            }
+            break;
+        case ShapeKind::Plane:
+            if (!is_finite(s.normal) || s.normal.norm() < 1e-9 || !std::isfinite(s.offset)) {
+                fail(c, "plane normal must be finite and non-zero");
+            }
+            break;
+    }
+    for (const Vec3& v : s.vertices) {
+        if (!is_finite(v)) fail(c, "vertices must be finite");
+    }
+    if ((s.kind == ShapeKind::Mesh || s.kind == ShapeKind::Plane) && c.motion != Motion::Static) {
+        fail(c, "mesh and plane colliders must be static");
+    }
+    if (c.motion == Motion::Dynamic) {
+        require_positive(c, c.mass, "mass");
+    } else if (c.mass != 0.0) {
+        fail(c, "mass is only for dynamic colliders");
+    }
+    if (!std::isfinite(c.friction) || c.friction < 0.0) fail(c, "friction must be >= 0");
+    if (!std::isfinite(c.restitution) || c.restitution < 0.0 || c.restitution > 1.0) {
+        fail(c, "restitution must be within [0, 1]");
+    }
+    if (!is_finite(c.pose) || c.pose.orientation.norm() < 1e-9) {
+        fail(c, "pose must be finite with a non-zero quaternion");
+    }
+}
+
+ColliderShape make_collider_shape(const Collider& c) {
+    validate_collider(c);
+    const Shape& s = c.shape;
+    ColliderShape out;
+    switch (s.kind) {
+        case ShapeKind::Box:
+            out.shape = std::make_unique<btBoxShape>(to_bt(s.half_extents));
+            break;
+        case ShapeKind::Sphere:
+            out.shape = std::make_unique<btSphereShape>(static_cast<btScalar>(s.radius));
+            break;
+        case ShapeKind::Capsule:
+            out.shape = std::make_unique<btCapsuleShape>(static_cast<btScalar>(s.radius),
+                                                         static_cast<btScalar>(2 * s.half_height));
+            break;
+        case ShapeKind::Cylinder:
+            out.shape = std::make_unique<btCylinderShape>(
+                btVector3(static_cast<btScalar>(s.radius), static_cast<btScalar>(s.half_height),
+                          static_cast<btScalar>(s.radius)));
+            break;
+        case ShapeKind::Convex: {
+            auto hull = std::make_unique<btConvexHullShape>();
+            for (const Vec3& v : s.vertices) hull->addPoint(to_bt(v), false);
+            hull->recalcLocalAabb();
+            hull->optimizeConvexHull();
+            out.shape = std::move(hull);
+            break;
+        }
+        case ShapeKind::Mesh: {
+            for (const Vec3& v : s.vertices) {
+                for (int i = 0; i < 3; ++i) out.mesh_vertices.push_back(static_cast<float>(v[i]));
+            }
+            for (const auto& tri : s.indices)
+                out.mesh_indices.insert(out.mesh_indices.end(), tri.begin(), tri.end());
+            out.mesh_interface = std::make_unique<btTriangleIndexVertexArray>(
+                static_cast<int>(s.indices.size()), out.mesh_indices.data(), 3 * sizeof(int),
+                static_cast<int>(s.vertices.size()), out.mesh_vertices.data(), 3 * sizeof(float));
+            out.shape = std::make_unique<btBvhTriangleMeshShape>(out.mesh_interface.get(), true);
+            break;
+        }
+        case ShapeKind::Plane:
+            out.shape = std::make_unique<btStaticPlaneShape>(to_bt(s.normal.normalized()),
+                                                             static_cast<btScalar>(s.offset));
+            break;
+    }
+    if (s.kind != ShapeKind::Sphere && s.kind != ShapeKind::Capsule) out.shape->setMargin(kMargin);
+    return out;
+}
+
+double min_half_extent(const btCollisionShape& shape) {
+    btVector3 lo, hi;
+    shape.getAabb(btTransform::getIdentity(), lo, hi);
+    const btVector3 half = (hi - lo) * 0.5f;
+    return std::min({half.x(), half.y(), half.z()});
+}
+
+}  // namespace physhand

@@ -1,0 +1,82 @@
+#include "drive.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace physhand {
+
+namespace {
+
+// Torque limit = force limit times a finger-length lever.
+constexpr double kTorqueLever = 0.03;
+
+Vec3 clamp_norm(const Vec3& v, double limit) {
+    if (limit <= 0.0) return v;
+    const double n = v.norm();
+    return n > limit ? v * (limit / n) : v;
+}
+
+// Velocity at the end of the substep under a spring-damper evaluated at that end state
+// (backward Euler), for a unit-mass system with gains k, d: stable for any k, d, h.
+Vec3 implicit_velocity(const Vec3& error, const Vec3& velocity, const Vec3& target_velocity,
+                       double k, double d, double h) {
+    return (velocity - h * k * error + h * d * target_velocity) / (1.0 + h * h * k + h * d);
+}
+
+}  // namespace
+
+const std::vector<DriveSettings>& builtin_drives() {
+    // Gains of the implicit drives come from the sweep in BENCHMARKS.md.
+    static const std::vector<DriveSettings> drives = {
+        {"bones", BodyModel::BoneCapsules, DriveLaw::Implicit, 20000.0, 90.0, true, 20.0, 2},
+        {"implicit", BodyModel::JointSpheres, DriveLaw::Implicit, 20000.0, 90.0, false, 20.0, 2},
+        {"paper", BodyModel::JointSpheres, DriveLaw::Explicit, 1000.0, 20.0, false, 0.0, 4},
+    };
+    return drives;
+}
+
+const DriveSettings& default_drive() {
+    return builtin_drives().front();
+}
+
+std::optional<DriveSettings> find_drive(std::string_view name) {
+    for (const DriveSettings& d : builtin_drives()) {
+        if (d.name == name) return d;
+    }
+    return std::nullopt;
+}
+
+Vec3 drive_force(const DriveSettings& drive, double mass, const LinearState& body,
+                 const LinearState& target, double h) {
+    const Vec3 error = body.position - target.position;
+    Vec3 force;
+    if (drive.law == DriveLaw::Explicit) {
+        force = -drive.stiffness * error - drive.damping * (body.velocity - target.velocity);
+    } else {
+        const Vec3 v_next = implicit_velocity(error, body.velocity, target.velocity,
+                                              drive.stiffness / mass, drive.damping / mass, h);
+        force = mass * (v_next - body.velocity) / h;
+    }
+    return clamp_norm(force, drive.force_limit);
+}
+
+Vec3 drive_torque(const DriveSettings& drive, double mass, const Eigen::Matrix3d& inertia_world,
+                  const Quat& orientation, const Vec3& angular_velocity, const Quat& target,
+                  const Vec3& target_angular_velocity, double h) {
+    // Like p - p_g: minus the rotation still to go.
+    const Vec3 error = -rotation_between(orientation, target);
+    const double k = drive.stiffness / mass;
+    const double d = drive.damping / mass;
+    Vec3 acceleration;
+    if (drive.law == DriveLaw::Explicit) {
+        acceleration = -k * error - d * (angular_velocity - target_angular_velocity);
+    } else {
+        acceleration =
+            (implicit_velocity(error, angular_velocity, target_angular_velocity, k, d, h) -
+             angular_velocity) /
+            h;
+    }
+    return clamp_norm(inertia_world * acceleration, drive.force_limit * kTorqueLever);
+}
+
+}  // namespace physhand

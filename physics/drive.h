@@ -1,0 +1,54 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pose.h"
+
+namespace physhand {
+
+// How the physical hand is built: a sphere per joint (as in the paper), or a palm box
+// plus a capsule per bone (no gaps between joints, orientation carries friction).
+enum class BodyModel { JointSpheres, BoneCapsules };
+
+// The law that turns a ghost target into a force each substep.
+enum class DriveLaw {
+    Explicit,  // the paper's Algorithm 1: F = -k(p - p_g) - d(v - v_g), integrated explicitly
+    Implicit,  // stable PD (Tan, Liu, Turk 2011): the spring acts on the end-of-substep state
+};
+
+struct DriveSettings {
+    std::string name;
+    BodyModel body_model = BodyModel::BoneCapsules;
+    DriveLaw law = DriveLaw::Implicit;
+    double stiffness = 1000.0;  // N/m, per body
+    double damping = 20.0;      // N·s/m, per body
+    // Orientation is driven with the same natural frequency and damping ratio as position
+    // (gains scaled by inertia/mass), only for bodies whose orientation matters.
+    bool drive_orientation = false;
+    double force_limit = 0.0;  // N per body (torque: scaled likewise); 0: unlimited
+    int substeps = 4;          // per 90 Hz frame
+};
+
+// The drives the project ships; the first is the default.
+const std::vector<DriveSettings>& builtin_drives();
+const DriveSettings& default_drive();
+std::optional<DriveSettings> find_drive(std::string_view name);
+
+// Force for one body over one substep of length h. Targets are the ghost at the end of
+// the substep; ghost velocity is its finite difference over the frame.
+struct LinearState {
+    Vec3 position;
+    Vec3 velocity;
+};
+Vec3 drive_force(const DriveSettings& drive, double mass, const LinearState& body,
+                 const LinearState& target, double h);
+
+// Torque for one body: `inertia_world` is the body's world inertia tensor.
+Vec3 drive_torque(const DriveSettings& drive, double mass, const Eigen::Matrix3d& inertia_world,
+                  const Quat& orientation, const Vec3& angular_velocity, const Quat& target,
+                  const Vec3& target_angular_velocity, double h);
+
+}  // namespace physhand

@@ -1,0 +1,298 @@
+#include "physical_hand.h"
+
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "bullet_convert.h"
+#include "world.h"
+
+namespace physhand {
+
+namespace {
+
+// Bone masses as in Ultraleap's physical hands (0.1 kg a bone, palm three times that):
+// light enough to follow, heavy enough that contacts with 0.1 kg objects stay solvable.
+constexpr double kBoneMass = 0.1;
+constexpr double kPalmMass = 0.3;
+constexpr double kHandFriction = 1.0;
+constexpr double kMinRadius = 0.004;
+constexpr double kMaxAngularSpeed = 100.0;  // rad/s
+// Every hand body turns like a 10 cm ball of its mass. A finger capsule's own inertia about
+// its axis is so small that the contact solver would rather roll it than move what the
+// fingers hold, and the grip is lost (measured: lift_hold drops the cube; Ultraleap sets
+// bone orientation directly for the same reason). The orientation drive scales its torque
+// by this inertia, so it tracks as stiffly as before.
+constexpr double kRotationalInertiaRadius = 0.1;
+
+constexpr std::array<Joint, 5> kFingerFirstBone = {Joint::ThumbMetacarpal, Joint::IndexProximal,
+                                                   Joint::MiddleProximal, Joint::RingProximal,
+                                                   Joint::LittleProximal};
+
+Joint next_joint(Joint j) {
+    return static_cast<Joint>(index_of(j) + 1);
+}
+
+Vec3 angular_velocity_between(const Quat& from, const Quat& to, double dt) {
+    return rotation_between(from, to) / dt;
+}
+
+}  // namespace
+
+struct PhysicalHand::Body {
+    Joint anchor;
+    Pose offset;  // body frame in the anchor joint's frame
+    std::vector<Joint> carried;
+    double mass;
+    std::unique_ptr<btCollisionShape> shape;
+    std::unique_ptr<btRigidBody> rigid;
+    double last_force = 0.0;
+};
+
+PhysicalHand::PhysicalHand(HandSide side, const DriveSettings& drive, const HandPose& source)
+    : side_(side), drive_(drive) {
+    auto add = [&](Joint anchor, const Pose& offset, std::vector<Joint> carried,
+                   std::unique_ptr<btCollisionShape> shape, double mass) {
+        auto b = std::make_unique<Body>();
+        b->anchor = anchor;
+        b->offset = offset;
+        b->carried = std::move(carried);
+        b->mass = mass;
+        b->shape = std::move(shape);
+        for (Joint j : b->carried) body_of_joint_[index_of(j)] = static_cast<int>(bodies_.size());
+        bodies_.push_back(std::move(b));
+    };
+
+    if (drive.body_model == BodyModel::JointSpheres) {
+        for (std::size_t j = 0; j < kJointCount; ++j) {
+            const Joint joint = static_cast<Joint>(j);
+            const bool core = joint == Joint::Palm || joint == Joint::Wrist;
+            add(joint, Pose{}, {joint},
+                std::make_unique<btSphereShape>(
+                    static_cast<btScalar>(std::max(source.radii[j], kMinRadius))),
+                core ? kPalmMass / 2 : kBoneMass);
+        }
+    } else {
+        // Palm box spanning wrist to knuckles and index to little finger, in the palm frame.
+        const Pose palm_inv = source[Joint::Palm].inverse();
+        Vec3 lo = Vec3::Constant(1e9), hi = Vec3::Constant(-1e9);
+        double knuckle_radius = 0.0;
+        for (Joint j : {Joint::Wrist, Joint::IndexMetacarpal, Joint::MiddleMetacarpal,
+                        Joint::RingMetacarpal, Joint::LittleMetacarpal, Joint::IndexProximal,
+                        Joint::MiddleProximal, Joint::RingProximal, Joint::LittleProximal}) {
+            const Vec3 p = palm_inv * source[j].position;
+            lo = lo.cwiseMin(p);
+            hi = hi.cwiseMax(p);
+            knuckle_radius = std::max(knuckle_radius, source.radii[index_of(j)]);
+        }
+        const double thickness = std::max(source.radii[index_of(Joint::Palm)] * 0.6, kMinRadius);
+        const Vec3 half((hi.x() - lo.x()) / 2 + knuckle_radius * 0.8, thickness,
+                        std::max((hi.z() - lo.z()) / 2, kMinRadius));
+        auto box = std::make_unique<btBoxShape>(to_bt(half));
+        box->setMargin(0.001f);
+        add(Joint::Palm,
+            Pose{Vec3((lo.x() + hi.x()) / 2, 0, (lo.z() + hi.z()) / 2), Quat::Identity()},
+            {Joint::Palm, Joint::Wrist, Joint::IndexMetacarpal, Joint::MiddleMetacarpal,
+             Joint::RingMetacarpal, Joint::LittleMetacarpal},
+            std::move(box), kPalmMass);
+
+        // A capsule per bone, from its anchor joint to the next; the last carries the tip.
+        for (Joint first : kFingerFirstBone) {
+            for (int bone = 0; bone < 3; ++bone) {
+                const Joint a = static_cast<Joint>(index_of(first) + bone);
+                const Joint b = next_joint(a);
+                const Vec3 local = source[a].inverse() * source[b].position;
+                const double length = std::max(local.norm(), 1e-3);
+                const double radius = std::max(
+                    std::min(source.radii[index_of(a)], source.radii[index_of(b)]), kMinRadius);
+                const Quat along = Quat::FromTwoVectors(Vec3(0, 0, -1), local / length);
+                std::vector<Joint> carried = {a};
+                if (bone == 2) carried.push_back(b);
+                add(a, Pose{local / 2, along}, carried,
+                    std::make_unique<btCapsuleShapeZ>(static_cast<btScalar>(radius),
+                                                      static_cast<btScalar>(length)),
+                    kBoneMass);
+            }
+        }
+    }
+
+    const int index_base = static_cast<int>(side) << 8;
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+        Body& b = *bodies_[i];
+        const btVector3 inertia =
+            btVector3(1, 1, 1) * static_cast<btScalar>(0.4 * b.mass * kRotationalInertiaRadius *
+                                                       kRotationalInertiaRadius);
+        btRigidBody::btRigidBodyConstructionInfo info(static_cast<btScalar>(b.mass), nullptr,
+                                                      b.shape.get(), inertia);
+        info.m_startWorldTransform = to_bt(target_of(b, source));
+        info.m_friction = static_cast<btScalar>(kHandFriction);
+        b.rigid = std::make_unique<btRigidBody>(info);
+        btRigidBody& r = *b.rigid;
+        r.setFlags(r.getFlags() | BT_DISABLE_WORLD_GRAVITY);  // the drive holds the hand up
+        r.setGravity(btVector3(0, 0, 0));
+        r.setActivationState(DISABLE_DEACTIVATION);
+        if (drive.body_model == BodyModel::JointSpheres) r.setAngularFactor(0.0f);
+        const double inner = min_half_extent(*b.shape);
+        r.setCcdMotionThreshold(static_cast<btScalar>(inner * 0.5));
+        r.setCcdSweptSphereRadius(static_cast<btScalar>(inner * 0.8));
+        r.setUserIndex(static_cast<int>(BodyRole::Hand));
+        r.setUserIndex2(index_base | static_cast<int>(i));
+    }
+}
+
+PhysicalHand::~PhysicalHand() {
+    if (world_) detach(*world_);
+}
+
+void PhysicalHand::attach(World& world) {
+    if (world_) return;
+    for (auto& b : bodies_) world.add_hand_body(b->rigid.get());
+    world_ = &world;
+}
+
+void PhysicalHand::detach(World& world) {
+    if (!world_) return;
+    for (auto& b : bodies_) world.remove_hand_body(b->rigid.get());
+    world_ = nullptr;
+}
+
+Pose PhysicalHand::target_of(const Body& body, const HandPose& ghost) const {
+    return ghost[body.anchor] * body.offset;
+}
+
+void PhysicalHand::seat(const HandPose& ghost, const HandPose& previous_ghost, double frame_dt) {
+    for (auto& b : bodies_) {
+        const Pose now = target_of(*b, ghost);
+        const Pose before = target_of(*b, previous_ghost);
+        btRigidBody& r = *b->rigid;
+        const btTransform t = to_bt(now);
+        r.setWorldTransform(t);
+        r.setInterpolationWorldTransform(t);
+        r.setLinearVelocity(to_bt((now.position - before.position) / frame_dt));
+        r.setAngularVelocity(
+            drive_.body_model == BodyModel::JointSpheres
+                ? btVector3(0, 0, 0)
+                : to_bt(angular_velocity_between(before.orientation, now.orientation, frame_dt)));
+        r.clearForces();
+        b->last_force = 0.0;
+    }
+}
+
+void PhysicalHand::drive(const HandPose& target, const HandPose& previous_ghost,
+                         const HandPose& ghost, double frame_dt, double h) {
+    for (auto& b : bodies_) {
+        btRigidBody& r = *b->rigid;
+        const Pose goal = target_of(*b, target);
+        const Pose before = target_of(*b, previous_ghost);
+        const Pose now = target_of(*b, ghost);
+        const LinearState body{from_bt(r.getCenterOfMassPosition()),
+                               from_bt(r.getLinearVelocity())};
+        const LinearState aim{goal.position, (now.position - before.position) / frame_dt};
+        const Vec3 force = drive_force(drive_, b->mass, body, aim, h);
+        r.applyCentralForce(to_bt(force));
+        b->last_force = force.norm();
+        if (drive_.drive_orientation) {
+            const btMatrix3x3 basis = r.getWorldTransform().getBasis();
+            const btVector3 inv = r.getInvInertiaDiagLocal();
+            Eigen::Matrix3d rot;
+            for (int i = 0; i < 3; ++i) {
+                for (int k = 0; k < 3; ++k) rot(i, k) = basis[i][k];
+            }
+            const Vec3 diag(inv.x() > 0 ? 1.0 / inv.x() : 0.0, inv.y() > 0 ? 1.0 / inv.y() : 0.0,
+                            inv.z() > 0 ? 1.0 / inv.z() : 0.0);
+            const Eigen::Matrix3d inertia = rot * diag.asDiagonal() * rot.transpose();
+            const Vec3 torque = drive_torque(
+                drive_, b->mass, inertia, from_bt(r.getOrientation()),
+                from_bt(r.getAngularVelocity()), goal.orientation,
+                angular_velocity_between(before.orientation, now.orientation, frame_dt), h);
+            r.applyTorque(to_bt(torque));
+        }
+    }
+}
+
+int PhysicalHand::clamp_speeds(double max_speed) {
+    int clamped = 0;
+    for (auto& b : bodies_) {
+        btRigidBody& r = *b->rigid;
+        const btScalar v = r.getLinearVelocity().length();
+        if (!std::isfinite(v) || v > max_speed) {
+            r.setLinearVelocity(std::isfinite(v)
+                                    ? r.getLinearVelocity() * static_cast<btScalar>(max_speed / v)
+                                    : btVector3(0, 0, 0));
+            ++clamped;
+        }
+        const btScalar w = r.getAngularVelocity().length();
+        if (!std::isfinite(w) || w > kMaxAngularSpeed) {
+            r.setAngularVelocity(std::isfinite(w) ? r.getAngularVelocity() *
+                                                        static_cast<btScalar>(kMaxAngularSpeed / w)
+                                                  : btVector3(0, 0, 0));
+        }
+    }
+    return clamped;
+}
+
+double PhysicalHand::max_speed() const {
+    double v = 0.0;
+    for (const auto& b : bodies_) v = std::max<double>(v, b->rigid->getLinearVelocity().length());
+    return v;
+}
+
+void PhysicalHand::set_contact_response(bool enabled) {
+    if (contact_response_ == enabled) return;
+    contact_response_ = enabled;
+    for (auto& b : bodies_) {
+        const int flags = b->rigid->getCollisionFlags();
+        b->rigid->setCollisionFlags(enabled ? flags & ~btCollisionObject::CF_NO_CONTACT_RESPONSE
+                                            : flags | btCollisionObject::CF_NO_CONTACT_RESPONSE);
+    }
+}
+
+void PhysicalHand::read(const HandPose& ghost, PhysicalHandState& out) const {
+    out.joints.active = ghost.active;
+    out.joints.radii = ghost.radii;
+    for (std::size_t j = 0; j < kJointCount; ++j) {
+        const Body& b = *bodies_[static_cast<std::size_t>(body_of_joint_[j])];
+        const btRigidBody& r = *b.rigid;
+        Pose body_pose = from_bt(r.getWorldTransform());
+        if (drive_.body_model == BodyModel::JointSpheres) {
+            body_pose.orientation = target_of(b, ghost).orientation;
+        }
+        const Pose anchor_to_joint = ghost[b.anchor].inverse() * ghost.joints[j];
+        Pose joint = body_pose * b.offset.inverse() * anchor_to_joint;
+        joint.orientation.normalize();
+        out.joints.joints[j] = joint;
+        const Vec3 w = from_bt(r.getAngularVelocity());
+        out.angular_velocity[j] = w;
+        out.linear_velocity[j] =
+            from_bt(r.getLinearVelocity()) + w.cross(joint.position - body_pose.position);
+        out.drive_force[j] = b.last_force;
+    }
+}
+
+int PhysicalHand::body_index(const btCollisionObject* object) const {
+    const int tag = object->getUserIndex2();
+    if ((tag >> 8) != static_cast<int>(side_)) return -1;
+    const int i = tag & 0xff;
+    return i < static_cast<int>(bodies_.size()) &&
+                   bodies_[static_cast<std::size_t>(i)]->rigid.get() == object
+               ? i
+               : -1;
+}
+
+const std::vector<Joint>& PhysicalHand::carried_joints(int body) const {
+    return bodies_[static_cast<std::size_t>(body)]->carried;
+}
+
+void PhysicalHand::bounds(Vec3& lo, Vec3& hi) const {
+    lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+    hi = -lo;
+    for (const auto& b : bodies_) {
+        btVector3 a, c;
+        b->rigid->getCollisionShape()->getAabb(b->rigid->getWorldTransform(), a, c);
+        lo = lo.cwiseMin(from_bt(a));
+        hi = hi.cwiseMax(from_bt(c));
+    }
+}
+
+}  // namespace physhand

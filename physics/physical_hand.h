@@ -1,0 +1,70 @@
+#pragma once
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "drive.h"
+#include "hand_skeleton.h"
+#include "simulation.h"
+
+class btCollisionObject;
+class btCollisionShape;
+class btRigidBody;
+
+namespace physhand {
+
+class World;
+
+// The simulated hand: rigid bodies laid out by the drive's body model, each following a
+// target frame derived from one ghost joint (its anchor). Joints the body carries move
+// rigidly with it, keeping their current ghost offsets from the anchor.
+class PhysicalHand {
+  public:
+    // Body sizes come from `shape_source` (the first valid ghost sample).
+    PhysicalHand(HandSide side, const DriveSettings& drive, const HandPose& shape_source);
+    ~PhysicalHand();
+    PhysicalHand(const PhysicalHand&) = delete;
+    PhysicalHand& operator=(const PhysicalHand&) = delete;
+
+    void attach(World& world);
+    void detach(World& world);
+    bool attached() const { return world_ != nullptr; }
+
+    // Places every body exactly at its target with the given ghost motion.
+    void seat(const HandPose& ghost, const HandPose& previous_ghost, double frame_dt);
+    // Applies drive forces for one substep of length h toward `target` (the ghost at the
+    // end of the substep), `previous_ghost`/`ghost` giving the ghost velocity over the frame.
+    void drive(const HandPose& target, const HandPose& previous_ghost, const HandPose& ghost,
+               double frame_dt, double h);
+    // Clamps body speeds to `max_speed`; returns the number clamped.
+    int clamp_speeds(double max_speed);
+    double max_speed() const;
+    // While re-seating, bodies pass through colliders until they are clear of them.
+    void set_contact_response(bool enabled);
+    bool contact_response() const { return contact_response_; }
+
+    // Physical joints for the current body poses, using `ghost` for carried offsets.
+    void read(const HandPose& ghost, PhysicalHandState& out) const;
+    // Which body a collision object is, or -1.
+    int body_index(const btCollisionObject* object) const;
+    std::size_t body_count() const { return bodies_.size(); }
+    // The joints a body carries (contact flags are per joint).
+    const std::vector<Joint>& carried_joints(int body) const;
+    // World bounds of all bodies.
+    void bounds(Vec3& lo, Vec3& hi) const;
+    const DriveSettings& drive_settings() const { return drive_; }
+
+  private:
+    struct Body;
+    Pose target_of(const Body& body, const HandPose& ghost) const;
+
+    HandSide side_;
+    DriveSettings drive_;
+    std::vector<std::unique_ptr<Body>> bodies_;
+    std::array<int, kJointCount> body_of_joint_{};
+    World* world_ = nullptr;
+    bool contact_response_ = true;
+};
+
+}  // namespace physhand

@@ -1,0 +1,74 @@
+#include "run_metrics.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace physhand {
+
+namespace {
+// METRICS.md: spring-back within this long after a release is not tracking lag.
+constexpr double kContactMemory_s = 0.25;
+}  // namespace
+
+double quantile(std::vector<double> values, double q) {
+    if (values.empty()) return 0.0;
+    const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size()))) -
+                   (q > 0 ? 1 : 0);
+    const auto nth = values.begin() + static_cast<std::ptrdiff_t>(std::min(k, values.size() - 1));
+    std::nth_element(values.begin(), nth, values.end());
+    return *nth;
+}
+
+void RunMetrics::add_hand(double t, HandSide side, const HandPose& ghost, const HandPose& physical,
+                          const std::array<bool, kJointCount>& in_contact) {
+    HandHistory& h = history_[static_cast<int>(side)];
+    if (!ghost.active || !physical.active) {
+        h.have_previous = false;
+        return;
+    }
+    for (std::size_t j = 0; j < kJointCount; ++j) {
+        if (in_contact[j]) h.last_contact_t[j] = t;
+        if (t - h.last_contact_t[j] <= kContactMemory_s) continue;
+        errors_m_.push_back((physical.joints[j].position - ghost.joints[j].position).norm());
+        if (h.have_previous) {
+            jitter_sq_ += (physical.joints[j].position - h.previous_physical.joints[j].position)
+                              .squaredNorm();
+            ghost_jitter_sq_ +=
+                (ghost.joints[j].position - h.previous_ghost.joints[j].position).squaredNorm();
+            ++jitter_n_;
+        }
+    }
+    h.previous_physical = physical;
+    h.previous_ghost = ghost;
+    h.have_previous = true;
+}
+
+void RunMetrics::add_frame(double step_us, double max_penetration_m, double max_speed,
+                           bool nonfinite) {
+    step_us_.push_back(step_us);
+    max_penetration_m_ = std::max(max_penetration_m_, max_penetration_m);
+    max_speed_ = std::max(max_speed_, max_speed);
+    if (nonfinite) ++nonfinite_;
+}
+
+MetricsSummary RunMetrics::summary() const {
+    MetricsSummary s;
+    double sq = 0.0;
+    for (double e : errors_m_) sq += e * e;
+    if (!errors_m_.empty())
+        s.tracking_error_rms_mm = std::sqrt(sq / static_cast<double>(errors_m_.size())) * 1e3;
+    s.tracking_error_p99_mm = quantile(errors_m_, 0.99) * 1e3;
+    s.max_penetration_mm = max_penetration_m_ * 1e3;
+    s.step_us_median = quantile(step_us_, 0.5);
+    s.step_us_p99 = quantile(step_us_, 0.99);
+    if (jitter_n_ > 0) {
+        s.jitter_mm = std::sqrt(jitter_sq_ / static_cast<double>(jitter_n_)) * 1e3;
+        s.ghost_jitter_mm = std::sqrt(ghost_jitter_sq_ / static_cast<double>(jitter_n_)) * 1e3;
+    }
+    s.max_body_speed = max_speed_;
+    s.frames = static_cast<int>(step_us_.size());
+    s.nonfinite_count = nonfinite_;
+    return s;
+}
+
+}  // namespace physhand

@@ -1,0 +1,72 @@
+#include "run_report.h"
+
+#include <cstdio>
+
+namespace physhand {
+
+namespace {
+
+nlohmann::json vec(const Vec3& v) {
+    return {v.x(), v.y(), v.z()};
+}
+
+}  // namespace
+
+nlohmann::json to_json(const RunResult& r) {
+    nlohmann::json predicates = nlohmann::json::array();
+    for (const PredicateResult& p : r.predicates) {
+        nlohmann::json j = {
+            {"type", p.type}, {"subject", p.subject}, {"passed", p.passed}, {"detail", p.detail}};
+        if (p.slip_mm) j["slip_mm"] = *p.slip_mm;
+        predicates.push_back(j);
+    }
+    nlohmann::json bodies = nlohmann::json::object();
+    for (const auto& [id, pose] : r.bodies) {
+        const Quat& q = pose.orientation;
+        bodies[id] = {{"position", vec(pose.position)},
+                      {"orientation", {q.x(), q.y(), q.z(), q.w()}}};
+    }
+    const MetricsSummary& m = r.metrics;
+    return {
+        {"scene", r.scene},
+        {"path", r.path},
+        {"drive", r.drive},
+        {"substeps", r.substeps},
+        {"success", r.success},
+        {"predicates", predicates},
+        {"tracking_error_rms_mm", m.tracking_error_rms_mm},
+        {"tracking_error_p99_mm", m.tracking_error_p99_mm},
+        {"max_penetration_mm", m.max_penetration_mm},
+        {"step_us_median", m.step_us_median},
+        {"step_us_p99", m.step_us_p99},
+        {"jitter_mm", m.jitter_mm},
+        {"ghost_jitter_mm", m.ghost_jitter_mm},
+        {"max_body_speed", m.max_body_speed},
+        {"frames", m.frames},
+        {"nonfinite_count", m.nonfinite_count},
+        {"rejected_samples", r.guards.rejected_samples},
+        {"reseats", r.guards.reseats},
+        {"speed_clamps", r.guards.speed_clamps},
+        {"bodies", bodies},
+    };
+}
+
+std::string summary_line(const RunResult& r) {
+    char buf[320];
+    std::snprintf(buf, sizeof buf,
+                  "%-13s %-4s drive=%s/%d  error %.2f mm rms  penetration %.2f mm  step %.0f us "
+                  "median  nonfinite %d",
+                  r.scene.c_str(), r.success ? "OK" : "FAIL", r.drive.c_str(), r.substeps,
+                  r.metrics.tracking_error_rms_mm, r.metrics.max_penetration_mm,
+                  r.metrics.step_us_median, r.metrics.nonfinite_count);
+    std::string line = buf;
+    for (const PredicateResult& p : r.predicates) {
+        if (p.slip_mm) {
+            std::snprintf(buf, sizeof buf, "  slip %.2f mm", *p.slip_mm);
+            line += buf;
+        }
+    }
+    return line;
+}
+
+}  // namespace physhand

@@ -1,0 +1,113 @@
+#include "scene_run.h"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "tracking.h"
+
+namespace physhand {
+
+namespace {
+
+bool hand_finite(const PhysicalHandState& s) {
+    for (std::size_t j = 0; j < kJointCount; ++j) {
+        if (!is_finite(s.joints.joints[j]) || !is_finite(s.linear_velocity[j]) ||
+            !is_finite(s.angular_velocity[j]) || !std::isfinite(s.drive_force[j])) {
+            return false;
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+SimulationSettings settings_for(const RunOptions& options) {
+    SimulationSettings settings;
+    if (options.drive) {
+        const auto drive = find_drive(*options.drive);
+        if (!drive) throw std::invalid_argument("unknown drive \"" + *options.drive + "\"");
+        settings.drive = *drive;
+    }
+    if (options.substeps) {
+        if (*options.substeps < 1) throw std::invalid_argument("substeps must be >= 1");
+        settings.drive.substeps = *options.substeps;
+    }
+    settings.gating = options.gating;
+    settings.sleeping = options.sleeping;
+    return settings;
+}
+
+RunResult run_scene(const Scene& input, const RunOptions& options) {
+    Scene scene = input;
+    if (options.seed) scene.tracking.seed = *options.seed;
+    const SimulationSettings settings = settings_for(options);
+    Simulation sim(settings, scene.gravity);
+
+    std::vector<ColliderHandle> handles;
+    for (const Collider& c : scene.colliders) handles.push_back(sim.add_collider(c));
+    auto handle_of = [&](const std::string& id) -> std::optional<ColliderHandle> {
+        for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
+            if (scene.colliders[i].id == id) return handles[i];
+        }
+        return std::nullopt;
+    };
+    const PredicateEvaluator::BodyLookup lookup = [&](const std::string& id) {
+        const auto h = handle_of(id);
+        return h ? sim.body_state(*h) : std::nullopt;
+    };
+
+    const TrackedHands tracked(scene);
+    PredicateEvaluator predicates(scene);
+    RunMetrics metrics;
+    const int frames =
+        static_cast<int>(std::ceil(scene.duration_s * settings.frame_rate_hz - 1e-9));
+    for (int f = 1; f <= frames; ++f) {
+        const double t = f / settings.frame_rate_hz;
+        for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
+            if (!scene.colliders[i].path.empty())
+                sim.set_kinematic_target(handles[i], scene.colliders[i].pose_at(t));
+        }
+        const std::array<HandPose, 2> ghosts = {tracked.ghost(HandSide::Left, t),
+                                                tracked.ghost(HandSide::Right, t)};
+        const auto start = std::chrono::steady_clock::now();
+        sim.step_to(t, ghosts);
+        const double step_us =
+            std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start)
+                .count();
+
+        bool finite = true;
+        std::array<std::optional<Pose>, 2> wrists;
+        for (HandSide side : kHandSides) {
+            const PhysicalHandState& hand = sim.hand(side);
+            metrics.add_hand(t, side, ghosts[static_cast<int>(side)], hand.joints, hand.in_contact);
+            finite = finite && hand_finite(hand);
+            if (hand.joints.active) wrists[static_cast<int>(side)] = hand.joints[Joint::Wrist];
+        }
+        for (ColliderHandle h : handles) {
+            const auto s = sim.body_state(h);
+            finite = finite && is_finite(s->pose) && is_finite(s->linear_velocity) &&
+                     is_finite(s->angular_velocity);
+        }
+        metrics.add_frame(step_us, sim.last_max_penetration(), sim.max_body_speed(), !finite);
+        predicates.add_frame(t, lookup, wrists);
+    }
+
+    RunResult result;
+    result.scene = scene.name;
+    result.drive = settings.drive.name;
+    result.substeps = settings.drive.substeps;
+    result.predicates = predicates.finish();
+    result.success = std::all_of(result.predicates.begin(), result.predicates.end(),
+                                 [](const PredicateResult& p) { return p.passed; });
+    result.metrics = metrics.summary();
+    result.guards = sim.guard_counters();
+    for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
+        if (scene.colliders[i].motion == Motion::Dynamic) {
+            result.bodies.emplace_back(scene.colliders[i].id, sim.body_state(handles[i])->pose);
+        }
+    }
+    return result;
+}
+
+}  // namespace physhand

@@ -1,0 +1,323 @@
+#include "simulation.h"
+
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <tuple>
+
+#include "collider_shape.h"
+#include "physical_hand.h"
+#include "world.h"
+
+namespace physhand {
+
+namespace {
+
+// A contact point within this distance counts as touching (surfaces meet, margins aside).
+constexpr double kTouchDistance = 0.0005;
+// A gated hand wakes when a collider comes within gate_reach, and sleeps again only when
+// none is within this multiple of it, so it does not flicker at the boundary.
+constexpr double kGateHysteresis = 1.5;
+// Below this quaternion norm a joint orientation is garbage, not merely unnormalised.
+constexpr double kMinQuaternionNorm = 1e-3;
+
+// Checks a runtime sample and normalises quaternions that need it (a unit one is left
+// bit for bit as the runtime gave it); false if unusable.
+bool sanitise(HandPose& ghost) {
+    for (std::size_t j = 0; j < kJointCount; ++j) {
+        Pose& p = ghost.joints[j];
+        const double n = p.orientation.norm();
+        if (!is_finite(p) || !std::isfinite(n) || n < kMinQuaternionNorm ||
+            !std::isfinite(ghost.radii[j]) || ghost.radii[j] < 0.0) {
+            return false;
+        }
+        if (std::abs(n - 1.0) > 1e-9) p.orientation.coeffs() /= n;
+    }
+    return true;
+}
+
+HandPose interpolate_hand(const HandPose& a, const HandPose& b, double s) {
+    HandPose out = b;
+    for (std::size_t j = 0; j < kJointCount; ++j)
+        out.joints[j] = interpolate(a.joints[j], b.joints[j], s);
+    return out;
+}
+
+void ghost_bounds(const HandPose& ghost, Vec3& lo, Vec3& hi) {
+    lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+    hi = -lo;
+    for (std::size_t j = 0; j < kJointCount; ++j) {
+        const Vec3 r = Vec3::Constant(ghost.radii[j]);
+        lo = lo.cwiseMin(ghost.joints[j].position - r);
+        hi = hi.cwiseMax(ghost.joints[j].position + r);
+    }
+}
+
+}  // namespace
+
+struct Simulation::HandSlot {
+    HandSide side;
+    std::unique_ptr<PhysicalHand> body;  // built from the first valid ghost
+    HandPose ghost;                      // latest valid ghost
+    HandPose previous_ghost;             // ghost at the previous step
+    bool tracked = false;                // this step's sample was valid
+    bool have_ghost = false;
+    bool simulated = false;
+    double last_tracked_time = -std::numeric_limits<double>::infinity();
+    PhysicalHandState state;
+};
+
+Simulation::Simulation(const SimulationSettings& settings, const Vec3& gravity)
+    : settings_(settings),
+      world_(std::make_unique<World>(
+          World::Settings{gravity, settings.sleeping, settings.max_body_speed})) {
+    if (settings.drive.substeps < 1 || !(settings.frame_rate_hz > 0.0)) {
+        throw std::invalid_argument("simulation: substeps and frame rate must be positive");
+    }
+    for (HandSide side : kHandSides) {
+        hands_[static_cast<int>(side)] = std::make_unique<HandSlot>();
+        hands_[static_cast<int>(side)]->side = side;
+    }
+}
+
+Simulation::~Simulation() {
+    for (auto& slot : hands_) {
+        if (slot->body) slot->body->detach(*world_);
+    }
+}
+
+void Simulation::set_drive(const DriveSettings& drive) {
+    if (drive.substeps < 1) throw std::invalid_argument("drive: substeps must be >= 1");
+    const double old_h = 1.0 / (settings_.frame_rate_hz * settings_.drive.substeps);
+    settings_.drive = drive;
+    tick_ = static_cast<std::int64_t>(std::floor(
+        static_cast<double>(tick_) * old_h * settings_.frame_rate_hz * drive.substeps + 0.5));
+    for (auto& slot : hands_) {
+        if (slot->body) slot->body->detach(*world_);
+        slot->body.reset();
+        slot->simulated = false;
+    }
+}
+
+ColliderHandle Simulation::add_collider(const Collider& collider) {
+    return world_->add_collider(collider);
+}
+bool Simulation::remove_collider(ColliderHandle handle) {
+    return world_->remove_collider(handle);
+}
+bool Simulation::has_collider(ColliderHandle handle) const {
+    return world_->has_collider(handle);
+}
+bool Simulation::set_kinematic_target(ColliderHandle handle, const Pose& pose) {
+    return is_finite(pose) && world_->set_kinematic_target(handle, pose);
+}
+bool Simulation::teleport(ColliderHandle handle, const Pose& pose, const Vec3& linear_velocity,
+                          const Vec3& angular_velocity) {
+    if (!is_finite(pose) || !is_finite(linear_velocity) || !is_finite(angular_velocity))
+        return false;
+    return world_->teleport(handle, pose, linear_velocity, angular_velocity);
+}
+std::optional<BodyState> Simulation::body_state(ColliderHandle handle) const {
+    return world_->body_state(handle);
+}
+std::size_t Simulation::collider_count() const {
+    return world_->collider_count();
+}
+
+double Simulation::max_body_speed() const {
+    double v = world_->max_collider_speed();
+    for (const auto& slot : hands_) {
+        if (slot->simulated) v = std::max(v, slot->body->max_speed());
+    }
+    return v;
+}
+
+const PhysicalHandState& Simulation::hand(HandSide side) const {
+    return hands_[static_cast<int>(side)]->state;
+}
+
+void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input) {
+    HandPose sample = input;
+    const bool valid = sample.active && sanitise(sample);
+    if (sample.active && !valid) ++guards_.rejected_samples;
+
+    const double frame_dt = 1.0 / settings_.frame_rate_hz;
+    if (valid) {
+        // A jump no hand can make: start over from the new place rather than fling the
+        // physical hand (and whatever it holds) across the room.
+        const double jump =
+            slot.have_ghost
+                ? (sample[Joint::Wrist].position - slot.ghost[Joint::Wrist].position).norm()
+                : 0.0;
+        const bool lost_hand =
+            slot.simulated &&
+            (slot.state.joints[Joint::Wrist].position - sample[Joint::Wrist].position).norm() >
+                settings_.reseat_distance;
+        const bool reseat = jump > settings_.reseat_distance || lost_hand ||
+                            time_s_ - slot.last_tracked_time > settings_.dropout_grace_s;
+        slot.previous_ghost = slot.have_ghost && !reseat ? slot.ghost : sample;
+        slot.ghost = sample;
+        slot.have_ghost = true;
+        slot.tracked = true;
+        slot.last_tracked_time = time_s_;
+        if (reseat && slot.simulated) {
+            ++guards_.reseats;
+            slot.body->seat(slot.ghost, slot.previous_ghost, frame_dt);
+            slot.body->set_contact_response(false);
+        }
+    } else {
+        slot.tracked = false;
+        slot.previous_ghost = slot.ghost;  // hold still at the last valid pose
+        const bool in_grace = time_s_ - slot.last_tracked_time <= settings_.dropout_grace_s;
+        if (!(slot.simulated && in_grace)) {
+            if (slot.body) slot.body->detach(*world_);
+            slot.simulated = false;
+            return;
+        }
+    }
+
+    Vec3 lo, hi;
+    ghost_bounds(slot.ghost, lo, hi);
+    if (slot.simulated) {
+        Vec3 plo, phi;
+        slot.body->bounds(plo, phi);
+        lo = lo.cwiseMin(plo);
+        hi = hi.cwiseMax(phi);
+    }
+    const double reach = settings_.gate_reach * (slot.simulated ? kGateHysteresis : 1.0);
+    const bool in_contact = std::any_of(slot.state.in_contact.begin(), slot.state.in_contact.end(),
+                                        [](bool c) { return c; });
+    const bool wanted =
+        !settings_.gating || in_contact || !slot.tracked ||
+        world_->any_collider_near(lo - Vec3::Constant(reach), hi + Vec3::Constant(reach));
+    if (wanted && !slot.simulated) {
+        if (!slot.body) {
+            slot.body = std::make_unique<PhysicalHand>(slot.side, settings_.drive, slot.ghost);
+        }
+        slot.body->seat(slot.previous_ghost, slot.previous_ghost, frame_dt);
+        slot.body->attach(*world_);
+        // Woken inside something (tracking began there): pass through until clear.
+        slot.body->set_contact_response(false);
+        slot.simulated = true;
+    } else if (!wanted && slot.simulated) {
+        slot.body->detach(*world_);
+        slot.simulated = false;
+    }
+}
+
+void Simulation::step_to(double time_s, const std::array<HandPose, 2>& ghosts) {
+    if (!std::isfinite(time_s)) return;
+    const double rate = settings_.frame_rate_hz * settings_.drive.substeps;
+    const auto target = static_cast<std::int64_t>(std::floor(time_s * rate + 1e-6));
+    if (target <= tick_) return;
+    const auto max_ticks =
+        std::max<std::int64_t>(1, static_cast<std::int64_t>(settings_.max_step_s * rate));
+    const int substeps = static_cast<int>(std::min(target - tick_, max_ticks));
+    tick_ = target - substeps;
+    time_s_ = static_cast<double>(tick_) / rate;
+
+    for (HandSide side : kHandSides)
+        update_hand_gate(*hands_[static_cast<int>(side)], ghosts[static_cast<int>(side)]);
+    step_substeps(substeps);
+    tick_ = target;
+    time_s_ = static_cast<double>(tick_) / rate;
+    for (auto& slot : hands_) publish_hand(*slot);
+}
+
+void Simulation::step_substeps(int substeps) {
+    last_substeps_ = 0;
+    last_max_penetration_ = 0.0;
+    contacts_.clear();
+    world_->clear_touched();
+    for (auto& slot : hands_) slot->state.in_contact = {};
+    const bool any_hand =
+        std::any_of(hands_.begin(), hands_.end(), [](const auto& s) { return s->simulated; });
+    if (!any_hand && !world_->needs_step()) {
+        world_->finish_kinematic_motion();
+        return;
+    }
+
+    const double h = 1.0 / (settings_.frame_rate_hz * settings_.drive.substeps);
+    const double step_dt = h * substeps;
+    std::map<std::tuple<int, int, ColliderHandle>, std::size_t> contact_index;
+    for (int i = 0; i < substeps; ++i) {
+        const double fraction = static_cast<double>(i + 1) / substeps;
+        for (auto& slot : hands_) {
+            if (!slot->simulated) continue;
+            const HandPose target = interpolate_hand(slot->previous_ghost, slot->ghost, fraction);
+            slot->body->drive(target, slot->previous_ghost, slot->ghost, step_dt, h);
+        }
+        world_->step(h, fraction);
+        for (auto& slot : hands_) {
+            if (slot->simulated)
+                guards_.speed_clamps += slot->body->clamp_speeds(settings_.max_body_speed);
+        }
+        guards_.speed_clamps += world_->clamp_collider_speeds();
+        ++last_substeps_;
+
+        std::array<bool, 2> penetrating{};
+        world_->for_each_hand_contact([&](const World::ContactPoint& c) {
+            const int tag = c.hand_part->getUserIndex2();
+            const int side = tag >> 8;
+            HandSlot& slot = *hands_[static_cast<std::size_t>(side)];
+            const int body = slot.body ? slot.body->body_index(c.hand_part) : -1;
+            if (body < 0) return;
+            if (c.distance < 0) penetrating[static_cast<std::size_t>(side)] = true;
+            if (c.distance > kTouchDistance && c.impulse <= 0.0) return;
+            if (!slot.body->contact_response()) return;
+            last_max_penetration_ = std::max(last_max_penetration_, -c.distance);
+            for (Joint j : slot.body->carried_joints(body))
+                slot.state.in_contact[index_of(j)] = true;
+            world_->mark_touched(c.collider, slot.side);
+            const auto key = std::make_tuple(side, body, c.collider);
+            auto [it, inserted] = contact_index.try_emplace(key, contacts_.size());
+            if (inserted) {
+                contacts_.push_back(
+                    {slot.side, slot.body->carried_joints(body).front(), c.collider, 0.0, 0.0});
+            }
+            ContactInfo& info = contacts_[it->second];
+            info.impulse += c.impulse;
+            info.penetration = std::max(info.penetration, -c.distance);
+        });
+        for (auto& slot : hands_) {
+            if (slot->simulated && !slot->body->contact_response() &&
+                !penetrating[static_cast<int>(slot->side)]) {
+                slot->body->set_contact_response(true);
+            }
+        }
+    }
+    world_->finish_kinematic_motion();
+}
+
+void Simulation::publish_hand(HandSlot& slot) {
+    PhysicalHandState& s = slot.state;
+    if (!slot.have_ghost || (!slot.tracked && !slot.simulated)) {
+        s.joints.active = false;
+        s.simulated = false;
+        s.in_contact = {};
+        s.drive_force = {};
+        return;
+    }
+    s.simulated = slot.simulated;
+    if (slot.simulated) {
+        slot.body->read(slot.ghost, s);
+        s.joints.active = true;
+        return;
+    }
+    // Gated: the ghost itself, exactly.
+    const double dt = 1.0 / settings_.frame_rate_hz;
+    s.joints = slot.ghost;
+    for (std::size_t j = 0; j < kJointCount; ++j) {
+        const Pose& a = slot.previous_ghost.joints[j];
+        const Pose& b = slot.ghost.joints[j];
+        s.linear_velocity[j] = (b.position - a.position) / dt;
+        s.angular_velocity[j] = rotation_between(a.orientation, b.orientation) / dt;
+    }
+    s.in_contact = {};
+    s.drive_force = {};
+}
+
+}  // namespace physhand

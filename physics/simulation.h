@@ -1,0 +1,123 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "drive.h"
+#include "hand_skeleton.h"
+#include "scene.h"
+
+namespace physhand {
+
+struct SimulationSettings {
+    DriveSettings drive = default_drive();
+    double frame_rate_hz = 90.0;    // substep length is 1 / (frame_rate_hz * drive.substeps)
+    double max_body_speed = 20.0;   // m/s, for hand parts and dynamic colliders alike
+    bool gating = true;             // skip a hand with no collider within reach
+    bool sleeping = true;           // dynamic colliders at rest stop being simulated
+    double gate_reach = 0.05;       // m between hand and collider bounds that wakes a hand
+    double dropout_grace_s = 0.5;   // a lost hand holds still this long before it lets go
+    double reseat_distance = 0.15;  // m of wrist error beyond which the hand is re-seated
+    double max_step_s = 0.1;        // time beyond this per call is dropped, not simulated
+};
+
+using ColliderHandle = std::uint32_t;
+
+struct BodyState {
+    Pose pose;
+    Vec3 linear_velocity = Vec3::Zero();
+    Vec3 angular_velocity = Vec3::Zero();
+    std::array<bool, 2> touched_by{};  // by HandSide, during the last step
+    bool asleep = false;
+};
+
+// What the physical hand is after a step, in the simulation's frame.
+struct PhysicalHandState {
+    HandPose joints;  // active when the hand is tracked or holding within its grace period
+    std::array<Vec3, kJointCount> linear_velocity{};
+    std::array<Vec3, kJointCount> angular_velocity{};
+    std::array<bool, kJointCount> in_contact{};     // joint's body touched a collider
+    std::array<double, kJointCount> drive_force{};  // |spring force| on the joint's body, N
+    bool simulated = false;  // false: gated or untracked, joints are the ghost's exactly
+};
+
+// Counters of pathological input, for tests and logs.
+struct GuardCounters {
+    std::uint64_t rejected_samples = 0;  // NaN/Inf, zero quaternion, absurd jump
+    std::uint64_t reseats = 0;
+    std::uint64_t speed_clamps = 0;
+};
+
+struct ContactInfo {
+    HandSide hand;
+    Joint joint;
+    ColliderHandle collider;
+    double impulse = 0.0;      // N·s over the step
+    double penetration = 0.0;  // m, >= 0
+};
+
+class World;
+class PhysicalHand;
+
+// The Bullet world, the proxy colliders and the two physical hands. Not thread-safe:
+// callers serialise access. Deterministic for the same sequence of calls.
+class Simulation {
+  public:
+    Simulation(const SimulationSettings& settings, const Vec3& gravity);
+    ~Simulation();
+    Simulation(const Simulation&) = delete;
+    Simulation& operator=(const Simulation&) = delete;
+
+    const SimulationSettings& settings() const { return settings_; }
+    // Takes effect from the next step; changing the body model rebuilds the hands.
+    void set_drive(const DriveSettings& drive);
+
+    // Throws std::invalid_argument naming what is wrong (zero size, bad mass, ...).
+    ColliderHandle add_collider(const Collider& collider);
+    bool remove_collider(ColliderHandle handle);
+    bool has_collider(ColliderHandle handle) const;
+    // Kinematic colliders: where it should be at the end of the next step.
+    bool set_kinematic_target(ColliderHandle handle, const Pose& pose);
+    // Any collider: placed now, with the given velocities (dynamic only), woken up.
+    bool teleport(ColliderHandle handle, const Pose& pose, const Vec3& linear_velocity,
+                  const Vec3& angular_velocity);
+    std::optional<BodyState> body_state(ColliderHandle handle) const;
+    std::size_t collider_count() const;
+
+    // Advances simulated time to `time_s`, driving the hands toward the ghosts sampled at
+    // that time (inactive: not tracked). An earlier or equal time steps nothing.
+    void step_to(double time_s, const std::array<HandPose, 2>& ghosts);
+    double time() const { return time_s_; }
+
+    const PhysicalHandState& hand(HandSide side) const;
+    const std::vector<ContactInfo>& contacts() const { return contacts_; }
+    // Deepest hand-collider penetration at the end of any substep of the last step, m.
+    double last_max_penetration() const { return last_max_penetration_; }
+    const GuardCounters& guard_counters() const { return guards_; }
+    int last_substeps() const { return last_substeps_; }
+    // Fastest linear speed of any simulated body (hand part or dynamic collider) now.
+    double max_body_speed() const;
+
+  private:
+    struct HandSlot;
+    void step_substeps(int substeps);
+    void update_hand_gate(HandSlot& slot, const HandPose& ghost);
+    void collect_contacts();
+    void publish_hand(HandSlot& slot);
+
+    SimulationSettings settings_;
+    std::unique_ptr<World> world_;
+    std::array<std::unique_ptr<HandSlot>, 2> hands_;
+    std::vector<ContactInfo> contacts_;
+    double time_s_ = 0.0;
+    std::int64_t tick_ = 0;
+    double last_max_penetration_ = 0.0;
+    int last_substeps_ = 0;
+    GuardCounters guards_;
+};
+
+}  // namespace physhand

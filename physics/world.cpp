@@ -1,0 +1,300 @@
+#include "world.h"
+
+#include <btBulletDynamicsCommon.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "bullet_convert.h"
+
+namespace physhand {
+
+namespace {
+
+// Below these speeds for 2 s (Bullet's deactivation time) a dynamic body may sleep.
+constexpr btScalar kSleepLinear = 0.05f;
+constexpr btScalar kSleepAngular = 0.1f;
+constexpr double kMaxAngularSpeed = 100.0;  // rad/s
+// Round shapes need a little rolling resistance to ever come to rest.
+constexpr btScalar kRollingFriction = 0.001f;
+
+BodyRole role_of(const btCollisionObject* o) {
+    return static_cast<BodyRole>(o->getUserIndex());
+}
+
+}  // namespace
+
+struct World::Entry {
+    Collider collider;
+    ColliderShape shape;
+    std::unique_ptr<btRigidBody> body;
+    Pose kinematic_from;
+    Pose kinematic_to;
+    bool kinematic_moving = false;
+    std::array<bool, 2> touched{};
+};
+
+World::World(const Settings& settings)
+    : settings_(settings),
+      configuration_(std::make_unique<btDefaultCollisionConfiguration>()),
+      dispatcher_(std::make_unique<btCollisionDispatcher>(configuration_.get())),
+      broadphase_(std::make_unique<btDbvtBroadphase>()),
+      solver_(std::make_unique<btSequentialImpulseConstraintSolver>()),
+      world_(std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(),
+                                                       solver_.get(), configuration_.get())) {
+    world_->setGravity(to_bt(settings.gravity));
+    btContactSolverInfo& info = world_->getSolverInfo();
+    info.m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
+    // Resolve every penetration by position correction alone, so pushing a hand into an
+    // object never turns overlap into launch velocity.
+    info.m_splitImpulse = true;
+    info.m_splitImpulsePenetrationThreshold = 0.0f;
+}
+
+World::~World() {
+    for (auto& [handle, entry] : colliders_) world_->removeRigidBody(entry->body.get());
+}
+
+World::Entry* World::find(ColliderHandle handle) {
+    auto it = colliders_.find(handle);
+    return it == colliders_.end() ? nullptr : it->second.get();
+}
+
+const World::Entry* World::find(ColliderHandle handle) const {
+    auto it = colliders_.find(handle);
+    return it == colliders_.end() ? nullptr : it->second.get();
+}
+
+ColliderHandle World::add_collider(const Collider& collider) {
+    auto entry = std::make_unique<Entry>();
+    entry->collider = collider;
+    entry->collider.pose.orientation.normalize();
+    entry->shape = make_collider_shape(entry->collider);
+    btCollisionShape* shape = entry->shape.shape.get();
+
+    const bool dynamic = collider.motion == Motion::Dynamic;
+    const btScalar mass = dynamic ? static_cast<btScalar>(collider.mass) : 0.0f;
+    btVector3 inertia(0, 0, 0);
+    if (dynamic) shape->calculateLocalInertia(mass, inertia);
+    btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape, inertia);
+    info.m_startWorldTransform = to_bt(entry->collider.pose);
+    info.m_friction = static_cast<btScalar>(collider.friction);
+    info.m_restitution = static_cast<btScalar>(collider.restitution);
+    entry->body = std::make_unique<btRigidBody>(info);
+    btRigidBody* body = entry->body.get();
+
+    const ShapeKind kind = collider.shape.kind;
+    if (kind == ShapeKind::Sphere || kind == ShapeKind::Capsule || kind == ShapeKind::Cylinder) {
+        body->setRollingFriction(kRollingFriction);
+        body->setSpinningFriction(kRollingFriction);
+    }
+    if (collider.motion == Motion::Kinematic) {
+        body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+        body->setActivationState(DISABLE_DEACTIVATION);
+        entry->kinematic_from = entry->kinematic_to = entry->collider.pose;
+    }
+    if (dynamic) {
+        body->setCollisionFlags(body->getCollisionFlags() |
+                                btCollisionObject::CF_HAS_FRICTION_ANCHOR);
+        body->setSleepingThresholds(kSleepLinear, kSleepAngular);
+        if (!settings_.sleeping) body->setActivationState(DISABLE_DEACTIVATION);
+        const double inner = min_half_extent(*shape);
+        body->setCcdMotionThreshold(static_cast<btScalar>(inner * 0.5));
+        body->setCcdSweptSphereRadius(static_cast<btScalar>(inner * 0.8));
+    }
+    const ColliderHandle handle = next_handle_++;
+    body->setUserIndex(static_cast<int>(BodyRole::Collider));
+    body->setUserIndex2(static_cast<int>(handle));
+    world_->addRigidBody(body);
+    colliders_.emplace(handle, std::move(entry));
+    return handle;
+}
+
+bool World::remove_collider(ColliderHandle handle) {
+    Entry* e = find(handle);
+    if (!e) return false;
+    world_->removeRigidBody(e->body.get());
+    colliders_.erase(handle);
+    return true;
+}
+
+bool World::set_kinematic_target(ColliderHandle handle, const Pose& pose) {
+    Entry* e = find(handle);
+    if (!e || e->collider.motion != Motion::Kinematic) return false;
+    e->kinematic_to = pose;
+    e->kinematic_moving = true;
+    return true;
+}
+
+bool World::teleport(ColliderHandle handle, const Pose& pose, const Vec3& linear_velocity,
+                     const Vec3& angular_velocity) {
+    Entry* e = find(handle);
+    if (!e) return false;
+    btRigidBody* body = e->body.get();
+    const btTransform t = to_bt(pose);
+    body->setWorldTransform(t);
+    body->setInterpolationWorldTransform(t);
+    if (e->collider.motion == Motion::Dynamic) {
+        body->setLinearVelocity(to_bt(linear_velocity));
+        body->setAngularVelocity(to_bt(angular_velocity));
+        body->activate(true);
+    }
+    e->kinematic_from = e->kinematic_to = pose;
+    e->kinematic_moving = false;
+    world_->updateSingleAabb(body);
+    // Contacts cached at the old place would push the body back.
+    broadphase_->getOverlappingPairCache()->cleanProxyFromPairs(body->getBroadphaseHandle(),
+                                                                dispatcher_.get());
+    return true;
+}
+
+std::optional<BodyState> World::body_state(ColliderHandle handle) const {
+    const Entry* e = find(handle);
+    if (!e) return std::nullopt;
+    const btRigidBody* body = e->body.get();
+    BodyState s;
+    s.pose = from_bt(body->getWorldTransform());
+    if (e->collider.motion == Motion::Dynamic) {
+        s.linear_velocity = from_bt(body->getLinearVelocity());
+        s.angular_velocity = from_bt(body->getAngularVelocity());
+        s.asleep = body->getActivationState() == ISLAND_SLEEPING;
+    }
+    s.touched_by = e->touched;
+    return s;
+}
+
+void World::add_hand_body(btRigidBody* body) {
+    world_->addRigidBody(body, kHandGroup, btBroadphaseProxy::AllFilter & ~kHandGroup);
+    ++hand_bodies_;
+}
+
+void World::remove_hand_body(btRigidBody* body) {
+    world_->removeRigidBody(body);
+    --hand_bodies_;
+}
+
+bool World::needs_step() const {
+    if (hand_bodies_ > 0) return true;
+    for (const auto& [handle, e] : colliders_) {
+        if (e->kinematic_moving) return true;
+        if (e->collider.motion == Motion::Dynamic && e->body->isActive()) return true;
+    }
+    return false;
+}
+
+void World::step(double h, double fraction) {
+    for (auto& [handle, e] : colliders_) {
+        if (!e->kinematic_moving) continue;
+        e->body->setWorldTransform(
+            to_bt(interpolate(e->kinematic_from, e->kinematic_to, fraction)));
+    }
+    // maxSubSteps 0: exactly one step of h, forces cleared after it.
+    world_->stepSimulation(static_cast<btScalar>(h), 0);
+
+    // Contact distances as of the end of this substep, not of its collision phase.
+    for (int i = 0; i < dispatcher_->getNumManifolds(); ++i) {
+        btPersistentManifold* m = dispatcher_->getManifoldByIndexInternal(i);
+        const btCollisionObject* a = m->getBody0();
+        const btCollisionObject* b = m->getBody1();
+        if (role_of(a) == BodyRole::Hand || role_of(b) == BodyRole::Hand) {
+            m->refreshContactPoints(a->getWorldTransform(), b->getWorldTransform());
+        }
+    }
+}
+
+void World::finish_kinematic_motion() {
+    for (auto& [handle, e] : colliders_) {
+        if (!e->kinematic_moving) continue;
+        e->kinematic_from = e->kinematic_to;
+        e->kinematic_moving = false;
+        // Zero velocity while it stands still, so resting objects are not dragged.
+        e->body->setInterpolationWorldTransform(e->body->getWorldTransform());
+    }
+}
+
+int World::clamp_collider_speeds() {
+    int clamped = 0;
+    for (auto& [handle, e] : colliders_) {
+        if (e->collider.motion != Motion::Dynamic || !e->body->isActive()) continue;
+        btRigidBody* body = e->body.get();
+        const btScalar v = body->getLinearVelocity().length();
+        if (!std::isfinite(v) || v > settings_.max_body_speed) {
+            body->setLinearVelocity(std::isfinite(v)
+                                        ? body->getLinearVelocity() *
+                                              static_cast<btScalar>(settings_.max_body_speed / v)
+                                        : btVector3(0, 0, 0));
+            ++clamped;
+        }
+        const btScalar w = body->getAngularVelocity().length();
+        if (!std::isfinite(w) || w > kMaxAngularSpeed) {
+            body->setAngularVelocity(std::isfinite(w)
+                                         ? body->getAngularVelocity() *
+                                               static_cast<btScalar>(kMaxAngularSpeed / w)
+                                         : btVector3(0, 0, 0));
+        }
+    }
+    return clamped;
+}
+
+double World::max_collider_speed() const {
+    double v = 0.0;
+    for (const auto& [handle, e] : colliders_) {
+        if (e->collider.motion == Motion::Dynamic) {
+            v = std::max<double>(v, e->body->getLinearVelocity().length());
+        }
+    }
+    return v;
+}
+
+bool World::any_collider_near(const Vec3& lo, const Vec3& hi) const {
+    struct Near : btBroadphaseAabbCallback {
+        Vec3 lo, hi;
+        bool found = false;
+        bool process(const btBroadphaseProxy* proxy) override {
+            const auto* o = static_cast<const btCollisionObject*>(proxy->m_clientObject);
+            if (role_of(o) != BodyRole::Collider) return true;
+            const auto* plane = dynamic_cast<const btStaticPlaneShape*>(o->getCollisionShape());
+            if (!plane) {
+                found = true;
+                return true;
+            }
+            // A plane's bounds are the whole world: test the box's lowest corner instead.
+            const btVector3 n = o->getWorldTransform().getBasis() * plane->getPlaneNormal();
+            const double offset =
+                plane->getPlaneConstant() + n.dot(o->getWorldTransform().getOrigin());
+            double lowest = 0.0;
+            for (int i = 0; i < 3; ++i) lowest += n[i] * (n[i] > 0 ? lo[i] : hi[i]);
+            found = found || lowest - offset <= 0.0;
+            return true;
+        }
+    } near;
+    near.lo = lo;
+    near.hi = hi;
+    broadphase_->aabbTest(to_bt(lo), to_bt(hi), near);
+    return near.found;
+}
+
+void World::for_each_hand_contact(const std::function<void(const ContactPoint&)>& visit) const {
+    for (int i = 0; i < dispatcher_->getNumManifolds(); ++i) {
+        const btPersistentManifold* m = dispatcher_->getManifoldByIndexInternal(i);
+        const btCollisionObject* a = m->getBody0();
+        const btCollisionObject* b = m->getBody1();
+        if (role_of(a) == BodyRole::Collider) std::swap(a, b);
+        if (role_of(a) != BodyRole::Hand || role_of(b) != BodyRole::Collider) continue;
+        for (int p = 0; p < m->getNumContacts(); ++p) {
+            const btManifoldPoint& pt = m->getContactPoint(p);
+            visit({a, static_cast<ColliderHandle>(b->getUserIndex2()), pt.getDistance(),
+                   pt.getAppliedImpulse()});
+        }
+    }
+}
+
+void World::mark_touched(ColliderHandle handle, HandSide side) {
+    if (Entry* e = find(handle)) e->touched[static_cast<int>(side)] = true;
+}
+
+void World::clear_touched() {
+    for (auto& [handle, e] : colliders_) e->touched = {};
+}
+
+}  // namespace physhand

@@ -1,0 +1,94 @@
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+
+#include "collider_shape.h"
+#include "scene.h"
+#include "simulation.h"
+
+class btBroadphaseInterface;
+class btCollisionDispatcher;
+class btCollisionObject;
+class btDefaultCollisionConfiguration;
+class btDiscreteDynamicsWorld;
+class btRigidBody;
+class btSequentialImpulseConstraintSolver;
+
+namespace physhand {
+
+// Who a Bullet object is, kept in its user indices.
+enum class BodyRole : int { Collider = 1, Hand = 2 };
+
+// Collision groups: hand parts never collide with each other (either hand).
+inline constexpr int kHandGroup = 1 << 6;
+
+// The Bullet world and the proxy colliders in it. Hand bodies are owned by PhysicalHand
+// and only added to / removed from this world.
+class World {
+  public:
+    struct Settings {
+        Vec3 gravity;
+        bool sleeping = true;
+        double max_body_speed = 20.0;
+    };
+    explicit World(const Settings& settings);
+    ~World();
+
+    ColliderHandle add_collider(const Collider& collider);
+    bool remove_collider(ColliderHandle handle);
+    bool has_collider(ColliderHandle handle) const { return colliders_.count(handle) != 0; }
+    bool set_kinematic_target(ColliderHandle handle, const Pose& pose);
+    bool teleport(ColliderHandle handle, const Pose& pose, const Vec3& linear_velocity,
+                  const Vec3& angular_velocity);
+    std::optional<BodyState> body_state(ColliderHandle handle) const;
+    std::size_t collider_count() const { return colliders_.size(); }
+
+    void add_hand_body(btRigidBody* body);
+    void remove_hand_body(btRigidBody* body);
+
+    // True when a step would change anything: awake dynamic bodies, moving kinematic ones
+    // or hand bodies in the world.
+    bool needs_step() const;
+    // One fixed substep of length h; `fraction` (0..1] of the way to kinematic targets.
+    void step(double h, double fraction);
+    // Kinematic targets become the current poses; the next step starts from there.
+    void finish_kinematic_motion();
+    // Clamps speeds of dynamic colliders; returns how many were clamped.
+    int clamp_collider_speeds();
+    double max_collider_speed() const;
+
+    // Any collider whose bounds come within `margin` of the box [lo, hi].
+    bool any_collider_near(const Vec3& lo, const Vec3& hi) const;
+
+    struct ContactPoint {
+        const btCollisionObject* hand_part;
+        ColliderHandle collider;
+        double distance;  // < 0: penetrating
+        double impulse;
+    };
+    // Hand-versus-collider contact points, re-measured at the current poses.
+    void for_each_hand_contact(const std::function<void(const ContactPoint&)>& visit) const;
+
+    void mark_touched(ColliderHandle handle, HandSide side);
+    void clear_touched();
+
+  private:
+    struct Entry;
+    Entry* find(ColliderHandle handle);
+    const Entry* find(ColliderHandle handle) const;
+
+    Settings settings_;
+    std::unique_ptr<btDefaultCollisionConfiguration> configuration_;
+    std::unique_ptr<btCollisionDispatcher> dispatcher_;
+    std::unique_ptr<btBroadphaseInterface> broadphase_;
+    std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
+    std::unique_ptr<btDiscreteDynamicsWorld> world_;
+    std::map<ColliderHandle, std::unique_ptr<Entry>> colliders_;  // ordered: deterministic
+    ColliderHandle next_handle_ = 1;
+    int hand_bodies_ = 0;
+};
+
+}  // namespace physhand

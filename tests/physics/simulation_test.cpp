@@ -1,0 +1,153 @@
+#include "simulation.h"
+
+#include <gtest/gtest.h>
+
+#include "test_scenes.h"
+
+namespace physhand {
+namespace {
+
+using testing::dynamic_box;
+using testing::static_box;
+
+HandPose right_hand(const Vec3& wrist, double curl = 0.0) {
+    HandArticulation a;
+    a.curl.fill(curl);
+    return pose_hand(HandSide::Right, Pose{wrist, Quat::Identity()}, a);
+}
+
+// One frame of the paper's drive through Bullet against Algorithm 1 by hand: the ghost
+// translates by d, so every joint sphere sees the same spring; Bullet integrates
+// v += F/m h, x += v h (symplectic Euler) once per substep.
+TEST(Simulation, PaperDriveFollowsAlgorithmOneThroughBullet) {
+    SimulationSettings settings;
+    settings.drive = *find_drive("paper");
+    settings.gating = false;
+    Simulation sim(settings, Vec3::Zero());
+    const Vec3 start(0.0, 1.0, 0.0);
+    const Vec3 d(0.002, -0.001, 0.0005);
+    sim.step_to(1 / 90.0, {HandPose{}, right_hand(start)});
+    const Vec3 before = sim.hand(HandSide::Right).joints[Joint::IndexTip].position;
+    sim.step_to(2 / 90.0, {HandPose{}, right_hand(start + d)});
+    const Vec3 after = sim.hand(HandSide::Right).joints[Joint::IndexTip].position;
+
+    const int n = settings.drive.substeps;
+    const double h = 1.0 / (90.0 * n), m = 0.1, k = 1000.0, c = 20.0;
+    const Vec3 v_ghost = d * 90.0;
+    Vec3 x = Vec3::Zero(), v = Vec3::Zero();
+    for (int i = 1; i <= n; ++i) {
+        const Vec3 f = -k * (x - d * (static_cast<double>(i) / n)) - c * (v - v_ghost);
+        v += f / m * h;
+        x += v * h;
+    }
+    EXPECT_NEAR((after - before - x).norm(), 0.0, 2e-7);  // Bullet computes in float
+    EXPECT_GT(x.norm(), 1e-4);
+}
+
+TEST(Simulation, AStaticBoxBlocksTheHandWhileTheGhostSinksIn) {
+    Simulation sim(SimulationSettings{}, Vec3(0, -9.81, 0));
+    sim.add_collider(static_box("block", Vec3(0, 0.5, 0), Vec3(0.3, 0.5, 0.3)));
+    double deepest = 0.0;
+    for (int f = 1; f <= 180; ++f) {
+        const double y = std::max(0.98, 1.1 - f * 0.002);  // palm ends 4 cm below the top
+        sim.step_to(f / 90.0, {HandPose{}, right_hand(Vec3(0, y, -0.05))});
+        deepest = std::max(deepest, sim.last_max_penetration());
+    }
+    const PhysicalHandState& h = sim.hand(HandSide::Right);
+    EXPECT_TRUE(h.simulated);
+    EXPECT_GT(h.joints[Joint::Palm].position.y(), 1.0);  // on top, not inside
+    EXPECT_LT(deepest, 0.01);
+    EXPECT_TRUE(h.in_contact[index_of(Joint::Palm)]);
+    EXPECT_GT(h.drive_force[index_of(Joint::Palm)], 0.0);
+    EXPECT_FALSE(sim.contacts().empty());
+}
+
+TEST(Simulation, ShortDropoutsHoldTheHandAndLongOnesLetGo) {
+    Simulation sim(SimulationSettings{}, Vec3(0, -9.81, 0));
+    sim.add_collider(static_box("table", Vec3(0, 0.725, -0.4), Vec3(0.4, 0.025, 0.3)));
+    int f = 1;
+    for (; f <= 20; ++f) sim.step_to(f / 90.0, {HandPose{}, right_hand(Vec3(0.1, 0.80, -0.3))});
+    ASSERT_TRUE(sim.hand(HandSide::Right).simulated);
+    const Vec3 held = sim.hand(HandSide::Right).joints[Joint::Wrist].position;
+    for (; f <= 50; ++f) {  // 0.33 s lost: within the grace period
+        sim.step_to(f / 90.0, {HandPose{}, HandPose{}});
+        EXPECT_TRUE(sim.hand(HandSide::Right).joints.active);
+    }
+    EXPECT_LT((sim.hand(HandSide::Right).joints[Joint::Wrist].position - held).norm(), 1e-3);
+    for (; f <= 90; ++f) sim.step_to(f / 90.0, {HandPose{}, HandPose{}});
+    EXPECT_FALSE(sim.hand(HandSide::Right).joints.active);
+}
+
+TEST(Simulation, KinematicCollidersMoveAndCarryWhatRestsOnThem) {
+    Simulation sim(SimulationSettings{}, Vec3(0, -9.81, 0));
+    Collider tray = static_box("tray", Vec3(0, 1, 0), Vec3(0.2, 0.01, 0.2));
+    tray.motion = Motion::Kinematic;
+    const ColliderHandle t = sim.add_collider(tray);
+    const ColliderHandle c = sim.add_collider(dynamic_box("cube", Vec3(0, 1.03, 0), 0.02, 0.1));
+    for (int f = 1; f <= 90; ++f) {
+        sim.set_kinematic_target(t, Pose{Vec3(0, 1 + 0.2 * f / 90.0, 0), Quat::Identity()});
+        sim.step_to(f / 90.0, {});
+    }
+    EXPECT_NEAR(sim.body_state(t)->pose.position.y(), 1.2, 1e-6);
+    EXPECT_NEAR(sim.body_state(c)->pose.position.y(), 1.23, 0.005);
+}
+
+TEST(Simulation, CollidersAreValidatedRemovedAndTeleported) {
+    Simulation sim(SimulationSettings{}, Vec3(0, -9.81, 0));
+    Collider bad = dynamic_box("zero", Vec3::Zero(), 0.0, 1.0);
+    EXPECT_THROW(sim.add_collider(bad), std::invalid_argument);
+    Collider massless = dynamic_box("massless", Vec3::Zero(), 0.1, 0.0);
+    EXPECT_THROW(sim.add_collider(massless), std::invalid_argument);
+    Collider moving_mesh = static_box("mesh", Vec3::Zero(), Vec3::Ones());
+    moving_mesh.shape.kind = ShapeKind::Mesh;
+    moving_mesh.shape.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 0, 1)};
+    moving_mesh.shape.indices = {{0, 1, 2}};
+    moving_mesh.motion = Motion::Dynamic;
+    moving_mesh.mass = 1.0;
+    EXPECT_THROW(sim.add_collider(moving_mesh), std::invalid_argument);
+
+    const ColliderHandle c = sim.add_collider(dynamic_box("cube", Vec3(0, 2, 0), 0.02, 0.1));
+    EXPECT_TRUE(
+        sim.teleport(c, Pose{Vec3(1, 2, 3), Quat::Identity()}, Vec3(0, 1, 0), Vec3::Zero()));
+    EXPECT_EQ(sim.body_state(c)->pose.position, Vec3(1, 2, 3));
+    EXPECT_FALSE(
+        sim.teleport(c, Pose{Vec3(NAN, 0, 0), Quat::Identity()}, Vec3::Zero(), Vec3::Zero()));
+    EXPECT_TRUE(sim.remove_collider(c));
+    EXPECT_FALSE(sim.remove_collider(c));
+    EXPECT_FALSE(sim.body_state(c));
+    EXPECT_FALSE(sim.set_kinematic_target(c, Pose{}));
+}
+
+TEST(Simulation, EveryShapeAndMotionCanBeSimulated) {
+    Simulation sim(SimulationSettings{}, Vec3(0, -9.81, 0));
+    Collider floor;
+    floor.id = "floor";
+    floor.shape.kind = ShapeKind::Plane;
+    sim.add_collider(floor);
+    std::vector<ColliderHandle> dynamic;
+    const ShapeKind kinds[] = {ShapeKind::Box, ShapeKind::Sphere, ShapeKind::Capsule,
+                               ShapeKind::Cylinder, ShapeKind::Convex};
+    for (int i = 0; i < 5; ++i) {
+        Collider c = dynamic_box("d" + std::to_string(i), Vec3(i * 0.2, 0.3, 0), 0.03, 0.2);
+        c.shape.kind = kinds[i];
+        c.shape.radius = 0.03;
+        c.shape.half_height = 0.02;
+        c.shape.vertices = {Vec3(0, 0, 0), Vec3(0.05, 0, 0), Vec3(0, 0.05, 0), Vec3(0, 0, 0.05)};
+        dynamic.push_back(sim.add_collider(c));
+    }
+    Collider mesh = static_box("ramp", Vec3(0, 0, -1), Vec3::Ones());
+    mesh.shape.kind = ShapeKind::Mesh;
+    mesh.shape.vertices = {Vec3(-1, 0, -1), Vec3(1, 0, -1), Vec3(-1, 0, 1), Vec3(1, 0, 1)};
+    mesh.shape.indices = {{0, 2, 1}, {1, 2, 3}};
+    sim.add_collider(mesh);
+    for (int f = 1; f <= 180; ++f) sim.step_to(f / 90.0, {});
+    for (ColliderHandle h : dynamic) {
+        const auto s = sim.body_state(h);
+        EXPECT_GT(s->pose.position.y(), 0.0);  // resting on the floor, not through it
+        EXPECT_LT(s->pose.position.y(), 0.1);
+        EXPECT_LT(s->linear_velocity.norm(), 0.05);
+    }
+}
+
+}  // namespace
+}  // namespace physhand

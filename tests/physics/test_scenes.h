@@ -1,0 +1,30 @@
+#pragma once
+
+#include <string>
+
+#include "scene.h"
+
+namespace physhand::testing {
+
+inline Scene sample_scene(const std::string& name) {
+    return load_scene(std::string(PHYSHAND_SCENES_DIR) + "/" + name + ".json");
+}
+
+inline Collider static_box(const std::string& id, const Vec3& center, const Vec3& half) {
+    Collider c;
+    c.id = id;
+    c.shape.kind = ShapeKind::Box;
+    c.shape.half_extents = half;
+    c.motion = Motion::Static;
+    c.pose.position = center;
+    return c;
+}
+
+inline Collider dynamic_box(const std::string& id, const Vec3& center, double half, double mass) {
+    Collider c = static_box(id, center, Vec3::Constant(half));
+    c.motion = Motion::Dynamic;
+    c.mass = mass;
+    return c;
+}
+
+}  // namespace physhand::testing

@@ -1,0 +1,144 @@
+#include "predicates.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "run_metrics.h"
+
+namespace physhand {
+namespace {
+
+Collider box_at(const std::string& id, const Vec3& p) {
+    Collider c;
+    c.id = id;
+    c.shape.half_extents = Vec3::Constant(0.02);
+    c.motion = Motion::Dynamic;
+    c.mass = 0.1;
+    c.pose.position = p;
+    return c;
+}
+
+struct Bodies {
+    std::map<std::string, BodyState> states;
+    PredicateEvaluator::BodyLookup lookup() const {
+        return [this](const std::string& id) -> std::optional<BodyState> {
+            auto it = states.find(id);
+            return it == states.end() ? std::nullopt : std::optional<BodyState>(it->second);
+        };
+    }
+    void place(const std::string& id, const Vec3& p, const Vec3& v = Vec3::Zero()) {
+        states[id].pose.position = p;
+        states[id].linear_velocity = v;
+    }
+};
+
+TEST(Predicates, EndAndTimedPredicatesUseTheRightFrame) {
+    Scene s;
+    s.colliders = {box_at("a", Vec3(0, 1, 0)), box_at("b", Vec3(0, 1, 0))};
+    s.success = {AbovePredicate{"a", 0.9, std::nullopt}, AbovePredicate{"a", 0.9, 0.5},
+                 DisplacedPredicate{"b", 0.1, std::nullopt},
+                 InsidePredicate{"a", Vec3(0, 0.5, 0), Vec3::Constant(0.1), std::nullopt},
+                 AtRestPredicate{"b", 0.05, std::nullopt}};
+    PredicateEvaluator eval(s);
+    Bodies bodies;
+    bodies.place("a", Vec3(0, 1, 0));
+    bodies.place("b", Vec3(0, 1, 0));
+    eval.add_frame(0.5, bodies.lookup(), {});
+    bodies.place("a", Vec3(0, 0.5, 0));
+    bodies.place("b", Vec3(0.2, 1, 0), Vec3(0.01, 0, 0));
+    eval.add_frame(1.0, bodies.lookup(), {});
+    const auto r = eval.finish();
+    ASSERT_EQ(r.size(), 5u);
+    EXPECT_FALSE(r[0].passed);  // at the end a is at 0.5
+    EXPECT_TRUE(r[1].passed);   // at 0.5 s it was still up
+    EXPECT_TRUE(r[2].passed);   // b moved 0.2 m from its scene pose
+    EXPECT_TRUE(r[3].passed);
+    EXPECT_TRUE(r[4].passed);
+    EXPECT_EQ(r[2].type, "displaced");
+}
+
+TEST(Predicates, StackedNeedsOrderAlignmentAndRest) {
+    Scene s;
+    s.colliders = {box_at("a", Vec3::Zero()), box_at("b", Vec3::Zero()), box_at("c", Vec3::Zero())};
+    s.success = {StackedPredicate{{"a", "b", "c"}, 0.02, std::nullopt}};
+    auto judge = [&](const Vec3& pb, const Vec3& pc, const Vec3& vc) {
+        PredicateEvaluator eval(s);
+        Bodies bodies;
+        bodies.place("a", Vec3(0, 0.77, 0));
+        bodies.place("b", pb);
+        bodies.place("c", pc, vc);
+        eval.add_frame(1.0, bodies.lookup(), {});
+        return eval.finish()[0].passed;
+    };
+    EXPECT_TRUE(judge(Vec3(0.01, 0.81, 0), Vec3(0.02, 0.85, 0), Vec3::Zero()));
+    EXPECT_FALSE(judge(Vec3(0.03, 0.81, 0), Vec3(0.03, 0.85, 0), Vec3::Zero()));   // b off a
+    EXPECT_FALSE(judge(Vec3(0.0, 0.81, 0), Vec3(0.0, 0.80, 0), Vec3::Zero()));     // c below b
+    EXPECT_FALSE(judge(Vec3(0.0, 0.81, 0), Vec3(0.0, 0.85, 0), Vec3(0.1, 0, 0)));  // c moving
+}
+
+TEST(Predicates, HeldMeasuresSlipInTheWristFrame) {
+    Scene s;
+    s.colliders = {box_at("cube", Vec3::Zero())};
+    s.success = {HeldPredicate{"cube", 0.9, 1.0, 2.0}};
+    PredicateEvaluator eval(s);
+    Bodies bodies;
+    for (int f = 0; f <= 30; ++f) {
+        const double t = 0.9 + f * 0.05;
+        // The wrist turns and rises; the cube turns with it but slides 4 mm along its x.
+        const Pose wrist{Vec3(0, 1.0 + 0.01 * f, 0),
+                         Quat(Eigen::AngleAxisd(0.05 * f, Vec3::UnitY()))};
+        const double slide = t >= 1.0 ? std::min(0.004, (t - 1.0) * 0.004) : 0.0;
+        bodies.place("cube", wrist * Vec3(0.05 + slide, -0.05, 0));
+        eval.add_frame(t, bodies.lookup(), {std::nullopt, wrist});
+    }
+    const auto r = eval.finish();
+    EXPECT_TRUE(r[0].passed);
+    ASSERT_TRUE(r[0].slip_mm.has_value());
+    EXPECT_NEAR(*r[0].slip_mm, 4.0, 1e-6);
+}
+
+TEST(Predicates, HeldFailsWhenTheBodyDrops) {
+    Scene s;
+    s.colliders = {box_at("cube", Vec3::Zero())};
+    s.success = {HeldPredicate{"cube", 0.9, 1.0, 2.0}};
+    PredicateEvaluator eval(s);
+    Bodies bodies;
+    for (int f = 0; f <= 30; ++f) {
+        bodies.place("cube", Vec3(0, f == 15 ? 0.85 : 1.0, 0));
+        eval.add_frame(0.9 + f * 0.05, bodies.lookup(), {});
+    }
+    EXPECT_FALSE(eval.finish()[0].passed);
+}
+
+TEST(RunMetrics, QuantileIsNearestRank) {
+    EXPECT_DOUBLE_EQ(quantile({5, 1, 4, 2, 3}, 0.5), 3);
+    EXPECT_DOUBLE_EQ(quantile({1, 2, 3, 4}, 0.99), 4);
+    EXPECT_DOUBLE_EQ(quantile({}, 0.5), 0);
+}
+
+TEST(RunMetrics, TrackingErrorSkipsJointsInRecentContact) {
+    RunMetrics m;
+    HandPose ghost = pose_hand(HandSide::Right, Pose{}, HandArticulation{});
+    HandPose phys = ghost;
+    phys.joints[index_of(Joint::IndexTip)].position.x() += 0.010;  // 10 mm off
+    std::array<bool, kJointCount> contact{};
+    contact[index_of(Joint::IndexTip)] = true;
+    m.add_hand(0.0, HandSide::Right, ghost, phys, contact);  // in contact: not counted
+    contact = {};
+    m.add_hand(0.2, HandSide::Right, ghost, phys, contact);  // released 0.2 s ago: not counted
+    m.add_hand(0.3, HandSide::Right, ghost, phys, contact);  // counted: 1 of 26 joints at 10 mm
+    m.add_frame(5.0, 0.002, 1.0, false);
+    m.add_frame(7.0, 0.001, 2.0, true);
+    const MetricsSummary s = m.summary();
+    const double counted = 25 * 3 + 1;  // frames 1-3 for 25 joints, frame 3 for the tip
+    EXPECT_NEAR(s.tracking_error_rms_mm, std::sqrt(100.0 / counted), 1e-9);
+    EXPECT_NEAR(s.tracking_error_p99_mm, 10.0, 1e-9);
+    EXPECT_NEAR(s.max_penetration_mm, 2.0, 1e-12);
+    EXPECT_EQ(s.nonfinite_count, 1);
+    EXPECT_EQ(s.frames, 2);
+    EXPECT_DOUBLE_EQ(s.max_body_speed, 2.0);
+}
+
+}  // namespace
+}  // namespace physhand
