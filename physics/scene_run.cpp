@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "float_transport.h"
+#include "frame_clock.h"
 #include "tracking.h"
 
 namespace physhand {
@@ -45,7 +47,8 @@ RunResult run_scene(const Scene& input, const RunOptions& options) {
     Simulation sim(settings, scene.gravity);
 
     std::vector<ColliderHandle> handles;
-    for (const Collider& c : scene.colliders) handles.push_back(sim.add_collider(c));
+    for (const Collider& c : scene.colliders)
+        handles.push_back(sim.add_collider(round_to_float(c)));
     auto handle_of = [&](const std::string& id) -> std::optional<ColliderHandle> {
         for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
             if (scene.colliders[i].id == id) return handles[i];
@@ -60,16 +63,16 @@ RunResult run_scene(const Scene& input, const RunOptions& options) {
     const TrackedHands tracked(scene);
     PredicateEvaluator predicates(scene);
     RunMetrics metrics;
-    const int frames =
-        static_cast<int>(std::ceil(scene.duration_s * settings.frame_rate_hz - 1e-9));
+    const int frames = static_cast<int>(std::ceil(scene.duration_s * kFrameRateHz - 1e-9));
     for (int f = 1; f <= frames; ++f) {
-        const double t = f / settings.frame_rate_hz;
+        const double t = frame_time_s(f);
         for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
-            if (!scene.colliders[i].path.empty())
-                sim.set_kinematic_target(handles[i], scene.colliders[i].pose_at(t));
+            if (!scene.colliders[i].path.empty()) {
+                sim.set_kinematic_target(handles[i], round_to_float(scene.colliders[i].pose_at(t)));
+            }
         }
-        const std::array<HandPose, 2> ghosts = {tracked.ghost(HandSide::Left, t),
-                                                tracked.ghost(HandSide::Right, t)};
+        const std::array<HandPose, 2> ghosts = {round_to_float(tracked.ghost(HandSide::Left, t)),
+                                                round_to_float(tracked.ghost(HandSide::Right, t))};
         const auto start = std::chrono::steady_clock::now();
         sim.step_to(t, ghosts);
         const double step_us =

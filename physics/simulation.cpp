@@ -211,7 +211,13 @@ void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input) {
 void Simulation::step_to(double time_s, const std::array<HandPose, 2>& ghosts) {
     if (!std::isfinite(time_s)) return;
     const double rate = settings_.frame_rate_hz * settings_.drive.substeps;
-    const auto target = static_cast<std::int64_t>(std::floor(time_s * rate + 1e-6));
+    // Nearest tick, not floor: frame times in whole nanoseconds (1/90 s is not one) then
+    // always land on the same tick whatever the clock's origin.
+    const std::int64_t target = std::llround(time_s * rate);
+    if (!started_) {
+        tick_ = target - settings_.drive.substeps;  // the first call simulates one frame
+        started_ = true;
+    }
     if (target <= tick_) return;
     const auto max_ticks =
         std::max<std::int64_t>(1, static_cast<std::int64_t>(settings_.max_step_s * rate));
@@ -219,8 +225,9 @@ void Simulation::step_to(double time_s, const std::array<HandPose, 2>& ghosts) {
     tick_ = target - substeps;
     time_s_ = static_cast<double>(tick_) / rate;
 
-    for (HandSide side : kHandSides)
+    for (HandSide side : kHandSides) {
         update_hand_gate(*hands_[static_cast<int>(side)], ghosts[static_cast<int>(side)]);
+    }
     step_substeps(substeps);
     tick_ = target;
     time_s_ = static_cast<double>(tick_) / rate;

@@ -88,8 +88,9 @@ class Simulation {
     std::optional<BodyState> body_state(ColliderHandle handle) const;
     std::size_t collider_count() const;
 
-    // Advances simulated time to `time_s`, driving the hands toward the ghosts sampled at
-    // that time (inactive: not tracked). An earlier or equal time steps nothing.
+    // Advances simulated time to `time_s` in fixed substeps, driving the hands toward the
+    // ghosts sampled at that time (inactive: not tracked). An earlier or equal time steps
+    // nothing. The first call starts the clock and simulates one frame ending at `time_s`.
     void step_to(double time_s, const std::array<HandPose, 2>& ghosts);
     double time() const { return time_s_; }
 
@@ -115,6 +116,7 @@ class Simulation {
     std::vector<ContactInfo> contacts_;
     double time_s_ = 0.0;
     std::int64_t tick_ = 0;
+    bool started_ = false;
     double last_max_penetration_ = 0.0;
     int last_substeps_ = 0;
     GuardCounters guards_;

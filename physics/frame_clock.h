@@ -1,0 +1,18 @@
+#pragma once
+
+#include <cstdint>
+
+namespace physhand {
+
+// Displayed frames at 90 Hz, timed as an OpenXR runtime reports them: whole nanoseconds.
+// Frame k (k >= 1) is shown at k * kFramePeriodNs after the scene starts. The headless
+// runner and the simulated runtime share this clock so that the physics-only path and the
+// path through the layer see the very same times.
+inline constexpr std::int64_t kFramePeriodNs = 11'111'111;
+inline constexpr double kFrameRateHz = 90.0;
+
+inline double frame_time_s(std::int64_t frame) {
+    return static_cast<double>(frame * kFramePeriodNs) * 1e-9;
+}
+
+}  // namespace physhand
