@@ -11,8 +11,13 @@ namespace physhand {
 inline constexpr std::int64_t kFramePeriodNs = 11'111'111;
 inline constexpr double kFrameRateHz = 90.0;
 
+// Seconds of a nanosecond count, computed one way everywhere so equal clocks agree bit for bit.
+inline double clock_seconds(std::int64_t ns) {
+    return static_cast<double>(ns) * 1e-9;
+}
+
 inline double frame_time_s(std::int64_t frame) {
-    return static_cast<double>(frame * kFramePeriodNs) * 1e-9;
+    return clock_seconds(frame * kFramePeriodNs);
 }
 
 }  // namespace physhand

@@ -1,0 +1,183 @@
+#include "config.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "layer_log.h"
+
+namespace physhand::layer {
+
+namespace {
+
+using nlohmann::json;
+
+bool get_bool(const json& value, const std::string& key) {
+    if (!value.is_boolean()) throw std::runtime_error(key + ": expected true or false");
+    return value.get<bool>();
+}
+
+double get_number(const json& value, const std::string& key) {
+    if (!value.is_number()) throw std::runtime_error(key + ": expected a number");
+    return value.get<double>();
+}
+
+int get_int(const json& value, const std::string& key) {
+    if (!value.is_number_integer() || value.get<std::int64_t>() < std::numeric_limits<int>::min() ||
+        value.get<std::int64_t>() > std::numeric_limits<int>::max()) {
+        throw std::runtime_error(key + ": expected an integer");
+    }
+    return value.get<int>();
+}
+
+std::string drive_names() {
+    std::string names;
+    for (const DriveSettings& d : builtin_drives()) names += (names.empty() ? "" : ", ") + d.name;
+    return names;
+}
+
+DriveSettings parse_drive(const json& object) {
+    if (!object.is_object()) throw std::runtime_error("drive: expected an object");
+    std::string name;
+    DriveOverrides overrides;
+    for (const auto& [key, value] : object.items()) {
+        const std::string path = "drive." + key;
+        if (key == "name") {
+            if (!value.is_string()) throw std::runtime_error(path + ": expected a string");
+            name = value.get<std::string>();
+        } else if (key == "stiffness") {
+            overrides.stiffness = get_number(value, path);
+        } else if (key == "damping") {
+            overrides.damping = get_number(value, path);
+        } else if (key == "force_limit") {
+            overrides.force_limit = get_number(value, path);
+        } else if (key == "substeps") {
+            overrides.substeps = get_int(value, path);
+        } else {
+            throw std::runtime_error(path + ": unknown key");
+        }
+    }
+    std::optional<DriveSettings> drive;
+    try {
+        drive = make_drive(name, overrides);
+    } catch (const std::invalid_argument& e) {
+        throw std::runtime_error(std::string("drive.") + e.what());
+    }
+    if (!drive) {
+        throw std::runtime_error("drive.name: no drive named \"" + name +
+                                 "\" (known: " + drive_names() + ")");
+    }
+    return *drive;
+}
+
+// Config colliders use the scene file's COLLIDER syntax, so they are validated by the
+// scene parser itself, wrapped in a minimal scene; its messages name "colliders[i]...",
+// which is also their path in the config file.
+std::vector<Collider> parse_colliders(const json& array, const std::filesystem::path& base_dir) {
+    if (!array.is_array()) throw std::runtime_error("colliders: expected an array");
+    const json scene = {{"format", "physhand-scene/1"},
+                        {"name", "config"},
+                        {"description", ""},
+                        {"duration_s", 1.0},
+                        {"colliders", array}};
+    std::vector<Collider> colliders;
+    try {
+        colliders = parse_scene(scene.dump(), base_dir).colliders;
+    } catch (const SceneError& e) {
+        throw std::runtime_error(e.what());
+    }
+    for (std::size_t i = 0; i < colliders.size(); ++i) {
+        if (colliders[i].motion != Motion::Static) {
+            throw std::runtime_error("colliders[" + std::to_string(i) +
+                                     "].motion: expected \"static\" (config colliders are fixed in "
+                                     "the room; apps declare moving ones through the extension)");
+        }
+    }
+    return colliders;
+}
+
+}  // namespace
+
+std::optional<DriveSettings> make_drive(std::string_view name, const DriveOverrides& overrides) {
+    std::optional<DriveSettings> drive =
+        name.empty() ? std::optional<DriveSettings>(default_drive()) : find_drive(name);
+    if (!drive) return std::nullopt;
+    const auto checked = [](const char* key, double value, bool zero_allowed) {
+        if (!std::isfinite(value) || value < 0 || (value == 0 && !zero_allowed)) {
+            throw std::invalid_argument(std::string(key) + ": expected a finite number " +
+                                        (zero_allowed ? ">= 0" : "> 0"));
+        }
+        return value;
+    };
+    if (overrides.stiffness) drive->stiffness = checked("stiffness", *overrides.stiffness, false);
+    if (overrides.damping) drive->damping = checked("damping", *overrides.damping, true);
+    if (overrides.force_limit) {
+        drive->force_limit = checked("force_limit", *overrides.force_limit, true);
+    }
+    if (overrides.substeps) {
+        if (*overrides.substeps < 1 || *overrides.substeps > kMaxSubsteps) {
+            throw std::invalid_argument("substeps: expected an integer from 1 to " +
+                                        std::to_string(kMaxSubsteps));
+        }
+        drive->substeps = *overrides.substeps;
+    }
+    return drive;
+}
+
+Config parse_config(const std::string& json_text, const std::filesystem::path& base_dir) {
+    const json root = json::parse(json_text);
+    if (!root.is_object()) throw std::runtime_error("expected a JSON object");
+    Config config;
+    for (const auto& [key, value] : root.items()) {
+        if (key == "enabled") {
+            config.enabled = get_bool(value, key);
+        } else if (key == "overlay") {
+            config.overlay = get_bool(value, key);
+        } else if (key == "tint") {
+            config.tint = get_bool(value, key);
+        } else if (key == "drive") {
+            config.drive = parse_drive(value);
+        } else if (key == "colliders") {
+            config.colliders = parse_colliders(value, base_dir);
+        } else {
+            throw std::runtime_error(key + ": unknown key");
+        }
+    }
+    return config;
+}
+
+Config load_config() {
+    namespace fs = std::filesystem;
+    fs::path path;
+    bool named = false;
+    if (const char* env = std::getenv("PHYSHAND_CONFIG"); env != nullptr && *env != '\0') {
+        path = env;
+        named = true;
+    } else if (const char* xdg = std::getenv("XDG_CONFIG_HOME"); xdg != nullptr && *xdg != '\0') {
+        path = fs::path(xdg) / "physhand" / "config.json";
+    } else if (const char* home = std::getenv("HOME"); home != nullptr && *home != '\0') {
+        path = fs::path(home) / ".config" / "physhand" / "config.json";
+    } else {
+        return {};
+    }
+    std::ifstream file(path);
+    if (!file) {
+        // Only a file the user named is missed; the default location is optional.
+        if (named) log_once("config " + path.string() + ": cannot be read; using the defaults");
+        return {};
+    }
+    std::stringstream text;
+    text << file.rdbuf();
+    try {
+        return parse_config(text.str(), path.parent_path());
+    } catch (const std::exception& e) {
+        log_once("config " + path.string() + ": " + e.what() + "; using the defaults");
+        return {};
+    }
+}
+
+}  // namespace physhand::layer

@@ -1,0 +1,298 @@
+#include <openxr/openxr.h>
+
+#include <algorithm>
+#include <array>
+#include <string>
+#include <utility>
+
+#include "dispatch.h"
+#include "frame_clock.h"
+#include "layer_log.h"
+#include "recording.h"
+#include "sessions.h"
+#include "xr_util.h"
+
+// xrLocateHandJointsEXT returns the physical hand: the runtime's hand (the ghost) drives
+// the session's simulation, and the app gets the simulated joints.
+namespace physhand::layer {
+
+namespace {
+
+constexpr std::pair<Joint, XrHandJointEXT> kJointPairs[] = {
+    {Joint::Palm, XR_HAND_JOINT_PALM_EXT},
+    {Joint::Wrist, XR_HAND_JOINT_WRIST_EXT},
+    {Joint::ThumbMetacarpal, XR_HAND_JOINT_THUMB_METACARPAL_EXT},
+    {Joint::ThumbProximal, XR_HAND_JOINT_THUMB_PROXIMAL_EXT},
+    {Joint::ThumbDistal, XR_HAND_JOINT_THUMB_DISTAL_EXT},
+    {Joint::ThumbTip, XR_HAND_JOINT_THUMB_TIP_EXT},
+    {Joint::IndexMetacarpal, XR_HAND_JOINT_INDEX_METACARPAL_EXT},
+    {Joint::IndexProximal, XR_HAND_JOINT_INDEX_PROXIMAL_EXT},
+    {Joint::IndexIntermediate, XR_HAND_JOINT_INDEX_INTERMEDIATE_EXT},
+    {Joint::IndexDistal, XR_HAND_JOINT_INDEX_DISTAL_EXT},
+    {Joint::IndexTip, XR_HAND_JOINT_INDEX_TIP_EXT},
+    {Joint::MiddleMetacarpal, XR_HAND_JOINT_MIDDLE_METACARPAL_EXT},
+    {Joint::MiddleProximal, XR_HAND_JOINT_MIDDLE_PROXIMAL_EXT},
+    {Joint::MiddleIntermediate, XR_HAND_JOINT_MIDDLE_INTERMEDIATE_EXT},
+    {Joint::MiddleDistal, XR_HAND_JOINT_MIDDLE_DISTAL_EXT},
+    {Joint::MiddleTip, XR_HAND_JOINT_MIDDLE_TIP_EXT},
+    {Joint::RingMetacarpal, XR_HAND_JOINT_RING_METACARPAL_EXT},
+    {Joint::RingProximal, XR_HAND_JOINT_RING_PROXIMAL_EXT},
+    {Joint::RingIntermediate, XR_HAND_JOINT_RING_INTERMEDIATE_EXT},
+    {Joint::RingDistal, XR_HAND_JOINT_RING_DISTAL_EXT},
+    {Joint::RingTip, XR_HAND_JOINT_RING_TIP_EXT},
+    {Joint::LittleMetacarpal, XR_HAND_JOINT_LITTLE_METACARPAL_EXT},
+    {Joint::LittleProximal, XR_HAND_JOINT_LITTLE_PROXIMAL_EXT},
+    {Joint::LittleIntermediate, XR_HAND_JOINT_LITTLE_INTERMEDIATE_EXT},
+    {Joint::LittleDistal, XR_HAND_JOINT_LITTLE_DISTAL_EXT},
+    {Joint::LittleTip, XR_HAND_JOINT_LITTLE_TIP_EXT},
+};
+
+// Joint arrays are copied between the physics and OpenXR by index.
+constexpr bool joints_match() {
+    for (const auto& [joint, xr_joint] : kJointPairs) {
+        if (static_cast<int>(joint) != static_cast<int>(xr_joint)) return false;
+    }
+    return std::size(kJointPairs) == kJointCount;
+}
+static_assert(kJointCount == XR_HAND_JOINT_COUNT_EXT);
+static_assert(joints_match(), "physhand::Joint must equal XrHandJointEXT, joint by joint");
+
+using JointLocations = std::array<XrHandJointLocationEXT, XR_HAND_JOINT_COUNT_EXT>;
+
+struct GhostSample {
+    bool active = false;
+    JointLocations joints{};
+};
+
+std::size_t side_index(HandSide side) {
+    return static_cast<std::size_t>(side);
+}
+
+// The runtime's hand in the layer's frame. A failed call or a joint without a valid pose
+// makes the hand inactive, which the simulation treats as tracking loss.
+GhostSample sample_ghost(const SessionState& session, XrHandTrackerEXT tracker, XrTime time) {
+    GhostSample sample;
+    XrHandJointsLocateInfoEXT info{};
+    info.type = XR_TYPE_HAND_JOINTS_LOCATE_INFO_EXT;
+    info.baseSpace = session.frame;
+    info.time = time;
+    XrHandJointLocationsEXT locations{};
+    locations.type = XR_TYPE_HAND_JOINT_LOCATIONS_EXT;
+    locations.jointCount = XR_HAND_JOINT_COUNT_EXT;
+    locations.jointLocations = sample.joints.data();
+    const XrResult result = session.instance->next.LocateHandJointsEXT(tracker, &info, &locations);
+    if (XR_FAILED(result)) {
+        log_once("sampling the tracked hand failed with XrResult " + std::to_string(result) +
+                 "; the hand counts as not tracked");
+        return {};
+    }
+    sample.active =
+        locations.isActive && std::all_of(sample.joints.begin(), sample.joints.end(),
+                                          [](const XrHandJointLocationEXT& j) {
+                                              return (j.locationFlags & kPoseValid) == kPoseValid;
+                                          });
+    return sample;
+}
+
+HandPose to_hand_pose(const GhostSample& sample) {
+    HandPose hand;
+    hand.active = sample.active;
+    for (std::size_t i = 0; i < kJointCount; ++i) {
+        hand.joints[i] = to_pose(sample.joints[i].pose);
+        hand.radii[i] = sample.joints[i].radius;
+    }
+    return hand;
+}
+
+// Takes the layer's own structure out of an output chain for the call down (the runtime
+// does not know it) and puts it back when done.
+class ChainSplice {
+  public:
+    ChainSplice(void* head, XrStructureType type) : prev_(static_cast<XrBaseOutStructure*>(head)) {
+        for (; prev_->next != nullptr; prev_ = prev_->next) {
+            if (prev_->next->type == type) {
+                removed_ = prev_->next;
+                prev_->next = removed_->next;
+                return;
+            }
+        }
+    }
+    ~ChainSplice() {
+        if (removed_ != nullptr) prev_->next = removed_;
+    }
+    ChainSplice(const ChainSplice&) = delete;
+    ChainSplice& operator=(const ChainSplice&) = delete;
+
+    XrBaseOutStructure* removed() const { return removed_; }
+
+  private:
+    XrBaseOutStructure* prev_;
+    XrBaseOutStructure* removed_ = nullptr;
+};
+
+// The runtime's answer, as the ghost; the hand counts as not simulated until shown to be.
+void report_ghost(const XrHandJointLocationsEXT& locations,
+                  XrHandJointsPhysicalStatePHYSHAND& physical) {
+    physical.ghostIsActive = locations.isActive;
+    physical.isSimulated = XR_FALSE;
+    for (std::size_t i = 0; i < kJointCount; ++i) {
+        if (physical.ghostPoses != nullptr)
+            physical.ghostPoses[i] = locations.jointLocations[i].pose;
+        if (physical.inContact != nullptr) physical.inContact[i] = XR_FALSE;
+        if (physical.springForce != nullptr) physical.springForce[i] = 0.0f;
+    }
+}
+
+void report_contacts(const PhysicalHandState& hand, XrHandJointsPhysicalStatePHYSHAND& physical) {
+    physical.isSimulated = XR_TRUE;
+    for (std::size_t i = 0; i < kJointCount; ++i) {
+        if (physical.inContact != nullptr)
+            physical.inContact[i] = hand.in_contact[i] ? XR_TRUE : XR_FALSE;
+        if (physical.springForce != nullptr) {
+            physical.springForce[i] = static_cast<float>(hand.drive_force[i]);
+        }
+    }
+}
+
+// The simulated joints in the app's base space; `frame` is the layer's frame there.
+void write_physical(const PhysicalHandState& hand, const Pose& frame, XrSpaceLocationFlags flags,
+                    bool ghost_active, XrHandJointLocationsEXT& locations,
+                    XrHandJointVelocitiesEXT* velocities) {
+    const bool active = hand.joints.active && (flags & kPoseValid) == kPoseValid;
+    // A hand held still through a tracking dropout is valid, but not tracked.
+    const XrSpaceLocationFlags joint_flags =
+        !active ? 0 : (ghost_active ? flags : flags & ~kPoseTracked);
+    locations.isActive = active ? XR_TRUE : XR_FALSE;
+    for (std::size_t i = 0; i < kJointCount; ++i) {
+        XrHandJointLocationEXT& out = locations.jointLocations[i];
+        out.locationFlags = joint_flags;
+        if (!active) continue;
+        out.pose = to_xr(frame * hand.joints.joints[i]);
+        out.radius = static_cast<float>(hand.joints.radii[i]);
+    }
+    if (velocities == nullptr) return;
+    for (std::size_t i = 0; i < kJointCount; ++i) {
+        XrHandJointVelocityEXT& out = velocities->jointVelocities[i];
+        out.velocityFlags =
+            active ? XR_SPACE_VELOCITY_LINEAR_VALID_BIT | XR_SPACE_VELOCITY_ANGULAR_VALID_BIT : 0;
+        if (!active) continue;
+        out.linearVelocity = to_xr(frame.orientation * hand.linear_velocity[i]);
+        out.angularVelocity = to_xr(frame.orientation * hand.angular_velocity[i]);
+    }
+}
+
+}  // namespace
+
+void SessionState::advance(XrTime time) {
+    // Compared as XrTime: the simulation's own clock is rounded to its substeps, so a
+    // repeated time can look later than it and would sample the hands again for nothing.
+    if (epoch && time <= advanced_to) return;
+    if (!epoch) epoch = time;
+    advanced_to = time;
+    // Seconds since the session's first located time: XrTime counts nanoseconds from an
+    // arbitrary origin, too large for the simulation's double seconds to stay exact.
+    const double t = clock_seconds(time - *epoch);
+    std::array<HandPose, 2> ghosts;
+    for (const HandSide side : kHandSides) {
+        const std::vector<XrHandTrackerEXT>& side_trackers = trackers[side_index(side)];
+        if (side_trackers.empty()) continue;  // never tracked: stays inactive
+        // Sampled at the stepped-to time for both hands, whichever hand the app asked for.
+        const GhostSample sample = sample_ghost(*this, side_trackers.front(), time);
+        ghosts[side_index(side)] = to_hand_pose(sample);
+        if (recorder) recorder->write(side, t, sample.joints);
+    }
+    simulation->step_to(t, ghosts);
+}
+
+XRAPI_ATTR XrResult XRAPI_CALL CreateHandTrackerEXT(XrSession session,
+                                                    const XrHandTrackerCreateInfoEXT* createInfo,
+                                                    XrHandTrackerEXT* handTracker) {
+    return guarded("xrCreateHandTrackerEXT", [&] {
+        const std::shared_ptr<SessionState> state = find_session(session);
+        if (!state) return XR_ERROR_HANDLE_INVALID;
+        const XrResult result =
+            state->instance->next.CreateHandTrackerEXT(session, createInfo, handTracker);
+        if (XR_FAILED(result)) return result;
+        // The runtime accepted createInfo, so it is valid.
+        const HandSide side =
+            createInfo->hand == XR_HAND_LEFT_EXT ? HandSide::Left : HandSide::Right;
+        try {
+            add_tracker(*handTracker, {state, side});
+            std::lock_guard lock(state->mutex);
+            state->trackers[side_index(side)].push_back(*handTracker);
+        } catch (...) {
+            remove_tracker(*handTracker);
+            state->instance->next.DestroyHandTrackerEXT(*handTracker);
+            *handTracker = XR_NULL_HANDLE;
+            throw;
+        }
+        return result;
+    });
+}
+
+XRAPI_ATTR XrResult XRAPI_CALL DestroyHandTrackerEXT(XrHandTrackerEXT handTracker) {
+    return guarded("xrDestroyHandTrackerEXT", [&] {
+        const std::optional<TrackerRef> ref = find_tracker(handTracker);
+        if (!ref) return XR_ERROR_HANDLE_INVALID;
+        remove_tracker(handTracker);
+        {
+            std::lock_guard lock(ref->session->mutex);
+            std::erase(ref->session->trackers[side_index(ref->side)], handTracker);
+        }
+        return ref->session->instance->next.DestroyHandTrackerEXT(handTracker);
+    });
+}
+
+XRAPI_ATTR XrResult XRAPI_CALL LocateHandJointsEXT(XrHandTrackerEXT handTracker,
+                                                   const XrHandJointsLocateInfoEXT* locateInfo,
+                                                   XrHandJointLocationsEXT* locations) {
+    return guarded("xrLocateHandJointsEXT", [&] {
+        const std::optional<TrackerRef> ref = find_tracker(handTracker);
+        if (!ref) return XR_ERROR_HANDLE_INVALID;
+        if (locateInfo == nullptr || locations == nullptr ||
+            locateInfo->type != XR_TYPE_HAND_JOINTS_LOCATE_INFO_EXT ||
+            locations->type != XR_TYPE_HAND_JOINT_LOCATIONS_EXT ||
+            locations->jointCount != XR_HAND_JOINT_COUNT_EXT ||
+            locations->jointLocations == nullptr) {
+            return XR_ERROR_VALIDATION_FAILURE;
+        }
+        auto* velocities = find_in_chain<XrHandJointVelocitiesEXT>(
+            locations->next, XR_TYPE_HAND_JOINT_VELOCITIES_EXT);
+        if (velocities != nullptr && (velocities->jointCount != XR_HAND_JOINT_COUNT_EXT ||
+                                      velocities->jointVelocities == nullptr)) {
+            return XR_ERROR_VALIDATION_FAILURE;
+        }
+        SessionState& session = *ref->session;
+
+        // The runtime answers in the app's own terms first: that is the ghost, and, for a
+        // hand the layer does not simulate, exactly what the app gets.
+        XrHandJointsPhysicalStatePHYSHAND* physical = nullptr;
+        XrResult result;
+        {
+            const ChainSplice splice(locations, XR_TYPE_HAND_JOINTS_PHYSICAL_STATE_PHYSHAND);
+            physical = reinterpret_cast<XrHandJointsPhysicalStatePHYSHAND*>(splice.removed());
+            if (physical != nullptr && physical->jointCount != XR_HAND_JOINT_COUNT_EXT) {
+                return XR_ERROR_VALIDATION_FAILURE;
+            }
+            result = session.instance->next.LocateHandJointsEXT(handTracker, locateInfo, locations);
+        }
+        if (XR_FAILED(result)) return result;
+        if (physical != nullptr) report_ghost(*locations, *physical);
+
+        std::lock_guard lock(session.mutex);
+        if (!session.alive || !session.simulation) return result;
+        session.advance(locateInfo->time);
+        const PhysicalHandState& hand = session.simulation->hand(ref->side);
+        if (!hand.simulated) return result;
+        if (physical != nullptr) report_contacts(hand, *physical);
+        Pose frame;
+        XrSpaceLocationFlags flags = 0;
+        const XrResult located =
+            session.frame_in_space(locateInfo->baseSpace, locateInfo->time, frame, flags);
+        if (XR_FAILED(located)) return located;
+        write_physical(hand, frame, flags, locations->isActive, *locations, velocities);
+        return result;
+    });
+}
+
+}  // namespace physhand::layer

@@ -1,0 +1,256 @@
+#ifndef PHYSHAND_PHYSICAL_HANDS_H_
+#define PHYSHAND_PHYSICAL_HANDS_H_ 1
+
+/*
+** XR_PHYSHAND_physical_hands: physical hands for OpenXR applications.
+**
+** Provided by the API layer XR_APILAYER_PHYSHAND_physical_hands. With the layer active,
+** xrLocateHandJointsEXT returns a simulated *physical* hand driven toward the tracked
+** (*ghost*) hand, colliding with the proxy colliders declared through this extension (and
+** with the static colliders of the layer's config file). This extension lets an app
+** declare and move those colliders, read them back, read the ghost hand and per-joint
+** contact state, and choose the hand drive. An app that does not enable the extension
+** still gets physical hands, colliding with the config file's colliders only.
+**
+** "physhand" is a private author tag, not a Khronos-registered one. Extension number
+** 10042 was picked far from the registered ones, so by the OpenXR rule
+** 1000000000 + (number - 1) * 1000 + offset its enumerant values are:
+**
+**   1010041000  XR_TYPE_PHYSICAL_COLLIDER_CREATE_INFO_PHYSHAND
+**   1010041001  XR_TYPE_PHYSICAL_COLLIDER_POSE_INFO_PHYSHAND
+**   1010041002  XR_TYPE_PHYSICAL_COLLIDERS_LOCATE_INFO_PHYSHAND
+**   1010041003  XR_TYPE_PHYSICAL_COLLIDER_LOCATIONS_PHYSHAND
+**   1010041004  XR_TYPE_HAND_JOINTS_PHYSICAL_STATE_PHYSHAND
+**   1010041005  XR_TYPE_HAND_DRIVE_INFO_PHYSHAND
+**   1010041000  XR_OBJECT_TYPE_PHYSICAL_COLLIDER_PHYSHAND
+**
+** Frames and time. The layer simulates in the session's STAGE reference space (LOCAL if
+** the runtime has no STAGE space). Every pose passed in or out names an XrSpace and an
+** XrTime; the layer converts with xrLocateSpace at that time. Velocities are expressed in
+** the axes of the named space; the motion of that space itself is not added or removed.
+** Locating hand joints or colliders at a time later than the simulation's advances the
+** simulation to that time, once: locating again at the same or an earlier time returns
+** the current state and never steps backwards.
+**
+** Results. Every function validates its input:
+**   XR_ERROR_VALIDATION_FAILURE  NULL pointers, wrong `type`, enum values out of range,
+**                                NaN or infinite numbers, non-positive sizes or mass,
+**                                counts that do not match.
+**   XR_ERROR_POSE_INVALID        a quaternion that is not unit length, or a pose whose
+**                                `space` cannot be located at `time`.
+**   XR_ERROR_TIME_INVALID        `time` <= 0.
+**   XR_ERROR_HANDLE_INVALID      a session or collider the layer does not know (destroyed,
+**                                or from another session), or an XR_NULL_HANDLE space.
+**   XR_ERROR_RUNTIME_FAILURE     anything unexpected inside the layer (the app is never
+**                                crashed), or a session the layer could not set up.
+** Errors from the runtime (for example an invalid XrSpace) are returned unchanged.
+** If the user turned the layer off in its config file, xrGetInstanceProcAddr answers
+** XR_ERROR_FUNCTION_UNSUPPORTED for this extension's functions even when it is enabled.
+**
+** Thread safety: all functions may be called from any thread; the layer serialises calls
+** per session.
+*/
+
+#include <openxr/openxr.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define XR_PHYSHAND_physical_hands 1
+#define XR_PHYSHAND_physical_hands_SPEC_VERSION 1
+#define XR_PHYSHAND_PHYSICAL_HANDS_EXTENSION_NAME "XR_PHYSHAND_physical_hands"
+
+XR_DEFINE_HANDLE(XrPhysicalColliderPHYSHAND)
+
+#define XR_TYPE_PHYSICAL_COLLIDER_CREATE_INFO_PHYSHAND ((XrStructureType)1010041000)
+#define XR_TYPE_PHYSICAL_COLLIDER_POSE_INFO_PHYSHAND ((XrStructureType)1010041001)
+#define XR_TYPE_PHYSICAL_COLLIDERS_LOCATE_INFO_PHYSHAND ((XrStructureType)1010041002)
+#define XR_TYPE_PHYSICAL_COLLIDER_LOCATIONS_PHYSHAND ((XrStructureType)1010041003)
+#define XR_TYPE_HAND_JOINTS_PHYSICAL_STATE_PHYSHAND ((XrStructureType)1010041004)
+#define XR_TYPE_HAND_DRIVE_INFO_PHYSHAND ((XrStructureType)1010041005)
+#define XR_OBJECT_TYPE_PHYSICAL_COLLIDER_PHYSHAND ((XrObjectType)1010041000)
+
+/* Shapes, in the collider's local frame (the frame of its pose). Zero is no shape, so a
+** zero-initialised create info is rejected rather than silently becoming a box. */
+typedef enum XrPhysicalColliderShapePHYSHAND {
+    XR_PHYSICAL_COLLIDER_SHAPE_BOX_PHYSHAND = 1,      /* halfExtents */
+    XR_PHYSICAL_COLLIDER_SHAPE_SPHERE_PHYSHAND = 2,   /* radius */
+    XR_PHYSICAL_COLLIDER_SHAPE_CAPSULE_PHYSHAND = 3,  /* radius, halfHeight along local +Y */
+    XR_PHYSICAL_COLLIDER_SHAPE_CYLINDER_PHYSHAND = 4, /* radius, halfHeight along local +Y */
+    XR_PHYSICAL_COLLIDER_SHAPE_CONVEX_PHYSHAND = 5,   /* convex hull of vertices */
+    XR_PHYSICAL_COLLIDER_SHAPE_MESH_PHYSHAND = 6,     /* triangles; static only */
+    XR_PHYSICAL_COLLIDER_SHAPE_PLANE_PHYSHAND = 7,    /* planeNormal, planeOffset; static only */
+    XR_PHYSICAL_COLLIDER_SHAPE_MAX_ENUM_PHYSHAND = 0x7FFFFFFF
+} XrPhysicalColliderShapePHYSHAND;
+
+typedef enum XrPhysicalColliderMotionPHYSHAND {
+    /* Never moves (a teleport may still place it). */
+    XR_PHYSICAL_COLLIDER_MOTION_STATIC_PHYSHAND = 1,
+    /* Moved by the app with xrSetPhysicalColliderPosePHYSHAND; pushes dynamic colliders
+    ** and hands, is not pushed back. */
+    XR_PHYSICAL_COLLIDER_MOTION_KINEMATIC_PHYSHAND = 2,
+    /* Simulated by the layer: gravity, contacts with hands and other colliders. */
+    XR_PHYSICAL_COLLIDER_MOTION_DYNAMIC_PHYSHAND = 3,
+    XR_PHYSICAL_COLLIDER_MOTION_MAX_ENUM_PHYSHAND = 0x7FFFFFFF
+} XrPhysicalColliderMotionPHYSHAND;
+
+/* Hand drives: how the physical hand is pulled toward the ghost hand. */
+typedef enum XrHandDriveKindPHYSHAND {
+    /* The layer's default drive (the best one the project's benchmark found). */
+    XR_HAND_DRIVE_KIND_DEFAULT_PHYSHAND = 0,
+    /* Mahdi et al.'s drive: an explicit spring-damper force on every joint sphere. */
+    XR_HAND_DRIVE_KIND_PAPER_PHYSHAND = 1,
+    /* The same law solved implicitly (stable proportional-derivative) on joint spheres. */
+    XR_HAND_DRIVE_KIND_IMPLICIT_PHYSHAND = 2,
+    /* Implicit drive of a palm box and one capsule per bone, orientation driven too. */
+    XR_HAND_DRIVE_KIND_BONES_PHYSHAND = 3,
+    XR_HAND_DRIVE_KIND_MAX_ENUM_PHYSHAND = 0x7FFFFFFF
+} XrHandDriveKindPHYSHAND;
+
+typedef XrFlags64 XrPhysicalColliderFlagsPHYSHAND;
+/* A joint of the left (right) hand touched the collider during the last simulation step. */
+static const XrPhysicalColliderFlagsPHYSHAND XR_PHYSICAL_COLLIDER_TOUCHED_BY_LEFT_BIT_PHYSHAND =
+    0x00000001;
+static const XrPhysicalColliderFlagsPHYSHAND XR_PHYSICAL_COLLIDER_TOUCHED_BY_RIGHT_BIT_PHYSHAND =
+    0x00000002;
+/* A dynamic collider at rest that the layer stopped simulating until something wakes it. */
+static const XrPhysicalColliderFlagsPHYSHAND XR_PHYSICAL_COLLIDER_ASLEEP_BIT_PHYSHAND = 0x00000004;
+
+/* A proxy collider: the app's stand-in for one of its objects.
+** Sizes are metres and must be > 0 where the shape uses them (a capsule's halfHeight may be
+** 0); fields a shape does not use are ignored. `pose` places the collider's local frame in
+** `space` at `time`. */
+typedef struct XrPhysicalColliderCreateInfoPHYSHAND {
+    XrStructureType type; /* XR_TYPE_PHYSICAL_COLLIDER_CREATE_INFO_PHYSHAND */
+    const void* XR_MAY_ALIAS next;
+    XrPhysicalColliderShapePHYSHAND shape;
+    XrPhysicalColliderMotionPHYSHAND motion;
+    XrVector3f halfExtents; /* box */
+    float radius;           /* sphere, capsule, cylinder */
+    float halfHeight;       /* capsule, cylinder: half the length of the straight part */
+    uint32_t vertexCount;   /* convex (>= 4), mesh (>= 3) */
+    const XrVector3f* vertices;
+    uint32_t indexCount; /* mesh: a positive multiple of 3, each index < vertexCount */
+    const uint32_t* indices;
+    XrVector3f planeNormal; /* plane: the points p with dot(planeNormal, p) = planeOffset */
+    float planeOffset;      /* (normal need not be unit length, must not be zero) */
+    float mass;             /* kg; dynamic: > 0; ignored otherwise */
+    float friction;         /* >= 0; combined with the hand's by multiplication */
+    float restitution;      /* 0 .. 1 */
+    XrSpace space;
+    XrPosef pose;
+    XrTime time;
+} XrPhysicalColliderCreateInfoPHYSHAND;
+
+/* Moves a collider. Without `teleport`: a kinematic collider's target, reached at the end
+** of the next simulation step (the collider sweeps there, pushing what is in the way);
+** velocities are ignored, and any other collider is XR_ERROR_VALIDATION_FAILURE. With
+** `teleport`: any collider is placed at `pose` at once and woken; a dynamic one takes the
+** given velocities (ignored for the others). */
+typedef struct XrPhysicalColliderPoseInfoPHYSHAND {
+    XrStructureType type; /* XR_TYPE_PHYSICAL_COLLIDER_POSE_INFO_PHYSHAND */
+    const void* XR_MAY_ALIAS next;
+    XrSpace space;
+    XrTime time;
+    XrPosef pose;
+    XrBool32 teleport;
+    XrVector3f linearVelocity;  /* m/s */
+    XrVector3f angularVelocity; /* rad/s */
+} XrPhysicalColliderPoseInfoPHYSHAND;
+
+typedef struct XrPhysicalCollidersLocateInfoPHYSHAND {
+    XrStructureType type; /* XR_TYPE_PHYSICAL_COLLIDERS_LOCATE_INFO_PHYSHAND */
+    const void* XR_MAY_ALIAS next;
+    XrSpace baseSpace;
+    XrTime time;
+    uint32_t colliderCount;
+    const XrPhysicalColliderPHYSHAND* colliders; /* all of this session */
+} XrPhysicalCollidersLocateInfoPHYSHAND;
+
+typedef struct XrPhysicalColliderLocationPHYSHAND {
+    /* Valid and tracked bits as for xrLocateSpace of the layer's frame in baseSpace; 0 and
+    ** an identity pose when baseSpace cannot be located. */
+    XrSpaceLocationFlags locationFlags;
+    XrPosef pose;
+    XrVector3f linearVelocity;
+    XrVector3f angularVelocity;
+    XrPhysicalColliderFlagsPHYSHAND flags;
+} XrPhysicalColliderLocationPHYSHAND;
+
+typedef struct XrPhysicalColliderLocationsPHYSHAND {
+    XrStructureType type; /* XR_TYPE_PHYSICAL_COLLIDER_LOCATIONS_PHYSHAND */
+    void* XR_MAY_ALIAS next;
+    uint32_t locationCount; /* must equal colliderCount */
+    XrPhysicalColliderLocationPHYSHAND* locations;
+} XrPhysicalColliderLocationsPHYSHAND;
+
+/* Chained to XrHandJointLocationsEXT::next. Each array has jointCount (= 26) elements and
+** may be NULL when the app does not want it. */
+typedef struct XrHandJointsPhysicalStatePHYSHAND {
+    XrStructureType type; /* XR_TYPE_HAND_JOINTS_PHYSICAL_STATE_PHYSHAND */
+    void* XR_MAY_ALIAS next;
+    uint32_t jointCount;
+    /* The tracked hand as the runtime reported it, in baseSpace; meaningful only when
+    ** ghostIsActive. */
+    XrPosef* ghostPoses;
+    /* The joint's physical body touched a collider during the last simulation step. */
+    XrBool32* inContact;
+    /* Magnitude of the drive (spring) force on the joint's body, newtons. */
+    float* springForce;
+    /* The runtime reported the hand active. The physical hand may stay active a short
+    ** while after the ghost is lost, so that a brief dropout does not drop a held object. */
+    XrBool32 ghostIsActive;
+    /* XR_FALSE: no collider was near the hand, so it was not simulated and the joint
+    ** locations are exactly the runtime's. */
+    XrBool32 isSimulated;
+} XrHandJointsPhysicalStatePHYSHAND;
+
+/* Changes the hand drive of both hands of a session, from the next simulation step on.
+** stiffness (N/m), damping (N*s/m) and forceLimit (N per body) must be >= 0, substeps
+** (per 90 Hz frame) <= 64; 0 keeps the chosen drive's own value. */
+typedef struct XrHandDriveInfoPHYSHAND {
+    XrStructureType type; /* XR_TYPE_HAND_DRIVE_INFO_PHYSHAND */
+    const void* XR_MAY_ALIAS next;
+    XrHandDriveKindPHYSHAND drive;
+    float stiffness;
+    float damping;
+    float forceLimit;
+    uint32_t substeps;
+} XrHandDriveInfoPHYSHAND;
+
+typedef XrResult(XRAPI_PTR* PFN_xrCreatePhysicalColliderPHYSHAND)(
+    XrSession session, const XrPhysicalColliderCreateInfoPHYSHAND* createInfo,
+    XrPhysicalColliderPHYSHAND* collider);
+typedef XrResult(XRAPI_PTR* PFN_xrDestroyPhysicalColliderPHYSHAND)(
+    XrPhysicalColliderPHYSHAND collider);
+typedef XrResult(XRAPI_PTR* PFN_xrSetPhysicalColliderPosePHYSHAND)(
+    XrPhysicalColliderPHYSHAND collider, const XrPhysicalColliderPoseInfoPHYSHAND* poseInfo);
+typedef XrResult(XRAPI_PTR* PFN_xrLocatePhysicalCollidersPHYSHAND)(
+    XrSession session, const XrPhysicalCollidersLocateInfoPHYSHAND* locateInfo,
+    XrPhysicalColliderLocationsPHYSHAND* locations);
+typedef XrResult(XRAPI_PTR* PFN_xrSetHandDrivePHYSHAND)(XrSession session,
+                                                        const XrHandDriveInfoPHYSHAND* driveInfo);
+
+#ifndef XR_NO_PROTOTYPES
+#ifdef XR_EXTENSION_PROTOTYPES
+XRAPI_ATTR XrResult XRAPI_CALL xrCreatePhysicalColliderPHYSHAND(
+    XrSession session, const XrPhysicalColliderCreateInfoPHYSHAND* createInfo,
+    XrPhysicalColliderPHYSHAND* collider);
+XRAPI_ATTR XrResult XRAPI_CALL
+xrDestroyPhysicalColliderPHYSHAND(XrPhysicalColliderPHYSHAND collider);
+XRAPI_ATTR XrResult XRAPI_CALL xrSetPhysicalColliderPosePHYSHAND(
+    XrPhysicalColliderPHYSHAND collider, const XrPhysicalColliderPoseInfoPHYSHAND* poseInfo);
+XRAPI_ATTR XrResult XRAPI_CALL xrLocatePhysicalCollidersPHYSHAND(
+    XrSession session, const XrPhysicalCollidersLocateInfoPHYSHAND* locateInfo,
+    XrPhysicalColliderLocationsPHYSHAND* locations);
+XRAPI_ATTR XrResult XRAPI_CALL xrSetHandDrivePHYSHAND(XrSession session,
+                                                      const XrHandDriveInfoPHYSHAND* driveInfo);
+#endif /* XR_EXTENSION_PROTOTYPES */
+#endif /* !XR_NO_PROTOTYPES */
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* PHYSHAND_PHYSICAL_HANDS_H_ */

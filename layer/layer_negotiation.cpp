@@ -1,0 +1,127 @@
+#include <openxr/openxr.h>
+#include <openxr/physhand_physical_hands.h>
+
+#include <cstring>
+#include <memory>
+#include <vector>
+
+#include "config.h"
+#include "dispatch.h"
+#include "layer_log.h"
+#include "loader_negotiation.h"
+#include "sessions.h"
+
+// The loader's side of the layer (shared/PRIOR_ART.md, "OpenXR layers"): negotiation,
+// instance creation through the chain, and instance destruction.
+namespace physhand::layer {
+
+namespace {
+
+bool is_layer_extension(const char* name) {
+    return std::strcmp(name, XR_PHYSHAND_PHYSICAL_HANDS_EXTENSION_NAME) == 0;
+}
+
+void destroy_instance(XrInstance instance, PFN_xrGetInstanceProcAddr next_gipa) {
+    PFN_xrVoidFunction destroy = nullptr;
+    if (XR_SUCCEEDED(next_gipa(instance, "xrDestroyInstance", &destroy)) && destroy != nullptr) {
+        reinterpret_cast<PFN_xrDestroyInstance>(destroy)(instance);
+    }
+}
+
+XRAPI_ATTR XrResult XRAPI_CALL CreateApiLayerInstance(const XrInstanceCreateInfo* info,
+                                                      const XrApiLayerCreateInfo* layerInfo,
+                                                      XrInstance* instance) {
+    return guarded("xrCreateApiLayerInstance", [&] {
+        if (info == nullptr || layerInfo == nullptr || instance == nullptr ||
+            (info->enabledExtensionCount > 0 && info->enabledExtensionNames == nullptr)) {
+            return XR_ERROR_VALIDATION_FAILURE;
+        }
+        const XrApiLayerNextInfo* next = layerInfo->nextInfo;
+        if (layerInfo->structType != XR_LOADER_INTERFACE_STRUCT_API_LAYER_CREATE_INFO ||
+            next == nullptr || next->structType != XR_LOADER_INTERFACE_STRUCT_API_LAYER_NEXT_INFO ||
+            std::strcmp(next->layerName, kLayerName) != 0 ||
+            next->nextGetInstanceProcAddr == nullptr ||
+            next->nextCreateApiLayerInstance == nullptr) {
+            log_once("xrCreateApiLayerInstance: the loader passed a malformed layer chain");
+            return XR_ERROR_INITIALIZATION_FAILED;
+        }
+
+        // The loader passes the app's extensions down unchanged, and the layers and runtime
+        // below would refuse the one only this layer provides.
+        std::vector<const char*> extensions;
+        bool extension_enabled = false;
+        for (std::uint32_t i = 0; i < info->enabledExtensionCount; ++i) {
+            const char* name = info->enabledExtensionNames[i];
+            if (name != nullptr && is_layer_extension(name)) {
+                extension_enabled = true;
+            } else {
+                extensions.push_back(name);
+            }
+        }
+        XrInstanceCreateInfo down_info = *info;
+        down_info.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
+        down_info.enabledExtensionNames = extensions.data();
+        XrApiLayerCreateInfo down_layer_info = *layerInfo;
+        down_layer_info.nextInfo = next->next;
+        const XrResult result =
+            next->nextCreateApiLayerInstance(&down_info, &down_layer_info, instance);
+        if (XR_FAILED(result)) return result;
+
+        try {
+            auto state = std::make_shared<InstanceState>();
+            state->instance = *instance;
+            state->next = make_next_dispatch(*instance, next->nextGetInstanceProcAddr);
+            state->extension_enabled = extension_enabled;
+            state->config = load_config();
+            add_instance(std::move(state));
+        } catch (const std::exception& e) {
+            log_failure("xrCreateApiLayerInstance", e.what());
+            destroy_instance(*instance, next->nextGetInstanceProcAddr);
+            *instance = XR_NULL_HANDLE;
+            return XR_ERROR_INITIALIZATION_FAILED;
+        }
+        return result;
+    });
+}
+
+}  // namespace
+
+XRAPI_ATTR XrResult XRAPI_CALL DestroyInstance(XrInstance instance) {
+    return guarded("xrDestroyInstance", [&] {
+        // Forgets every session of the instance too; the runtime destroys their spaces.
+        const std::shared_ptr<const InstanceState> state = remove_instance(instance);
+        if (!state) return XR_ERROR_HANDLE_INVALID;
+        return state->next.DestroyInstance(instance);
+    });
+}
+
+}  // namespace physhand::layer
+
+// The layer's only exported symbol: the loader finds everything else through it.
+extern "C" [[gnu::visibility("default")]] XRAPI_ATTR XrResult XRAPI_CALL
+xrNegotiateLoaderApiLayerInterface(const XrNegotiateLoaderInfo* loaderInfo, const char* layerName,
+                                   XrNegotiateApiLayerRequest* apiLayerRequest) {
+    using namespace physhand::layer;
+    if (loaderInfo == nullptr || layerName == nullptr || apiLayerRequest == nullptr ||
+        std::strcmp(layerName, kLayerName) != 0 ||
+        loaderInfo->structType != XR_LOADER_INTERFACE_STRUCT_LOADER_INFO ||
+        loaderInfo->structVersion != XR_LOADER_INFO_STRUCT_VERSION ||
+        loaderInfo->structSize != sizeof(XrNegotiateLoaderInfo) ||
+        apiLayerRequest->structType != XR_LOADER_INTERFACE_STRUCT_API_LAYER_REQUEST ||
+        apiLayerRequest->structVersion != XR_API_LAYER_INFO_STRUCT_VERSION ||
+        apiLayerRequest->structSize != sizeof(XrNegotiateApiLayerRequest)) {
+        return XR_ERROR_INITIALIZATION_FAILED;
+    }
+    // Loader interface 1, OpenXR 1.0.
+    if (loaderInfo->minInterfaceVersion > XR_CURRENT_LOADER_API_LAYER_VERSION ||
+        loaderInfo->maxInterfaceVersion < XR_CURRENT_LOADER_API_LAYER_VERSION ||
+        loaderInfo->minApiVersion >= XR_MAKE_VERSION(1, 1, 0) ||
+        loaderInfo->maxApiVersion < XR_MAKE_VERSION(1, 0, 0)) {
+        return XR_ERROR_INITIALIZATION_FAILED;
+    }
+    apiLayerRequest->layerInterfaceVersion = XR_CURRENT_LOADER_API_LAYER_VERSION;
+    apiLayerRequest->layerApiVersion = XR_CURRENT_API_VERSION;
+    apiLayerRequest->getInstanceProcAddr = &GetInstanceProcAddr;
+    apiLayerRequest->createApiLayerInstance = &CreateApiLayerInstance;
+    return XR_SUCCESS;
+}

@@ -1,0 +1,866 @@
+// The simulated runtime seen as an application sees it: through the real Khronos loader,
+// which finds the runtime by the manifest the build generates.
+
+#include <dlfcn.h>
+#include <gtest/gtest.h>
+#include <openxr/openxr.h>
+
+#include <Eigen/Geometry>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "frame_clock.h"
+#include "loader_negotiation.h"
+#include "scene.h"
+#include "tracking.h"
+
+namespace {
+
+constexpr XrTime kPeriod = physhand::kFramePeriodNs;  // 1/90 s
+
+// Scene time of a display time, when the first frame displayed at `first` is scene frame 1.
+double scene_time(XrTime time, XrTime first) {
+    return physhand::clock_seconds(time - first + kPeriod);
+}
+constexpr double kEyeHeight = 1.6;
+constexpr double kDuration = 0.5;
+constexpr double kDropoutFrom = 0.2, kDropoutTo = 0.26;
+
+// A right hand that moves, turns, curls and drops out once; no left hand.
+constexpr const char* kScene = R"({
+  "format": "physhand-scene/1",
+  "name": "sim_runtime_test",
+  "description": "keyframed right hand with one dropout",
+  "duration_s": 0.5,
+  "colliders": [
+    { "id": "floor", "shape": "plane", "normal": [0, 1, 0], "offset": 0, "motion": "static" }
+  ],
+  "hands": {
+    "right": {
+      "keyframes": [
+        { "t": 0.0, "wrist": { "position": [0.15, 1.1, -0.3], "orientation": [0, 0, 0, 1] },
+          "curl": [0.1, 0.1, 0.1, 0.1, 0.1] },
+        { "t": 0.4, "wrist": { "position": [0.05, 1.0, -0.45],
+                               "orientation": [0.258819, 0, 0, 0.9659258] },
+          "curl": [0.5, 0.8, 0.8, 0.7, 0.6], "spread": 0.4 }
+      ],
+      "interpolation": "smooth",
+      "scale": 1.0
+    }
+  },
+  "tracking": { "rate_hz": 90,
+                "dropouts": [ { "hand": "right", "from_s": 0.2, "to_s": 0.26 } ] }
+})";
+
+// A zeroed OpenXR struct carrying its type tag (the usual `XrFoo x{XR_TYPE_FOO}` trips
+// -Wmissing-field-initializers).
+template <typename T>
+T xr(XrStructureType type) {
+    T s{};
+    s.type = type;
+    return s;
+}
+
+template <typename Handle>
+Handle bogus_handle() {
+    return reinterpret_cast<Handle>(std::uintptr_t{0xdead0000});
+}
+
+XrPosef identity_pose() {
+    return {{0, 0, 0, 1}, {0, 0, 0}};
+}
+
+void expect_position(const XrVector3f& actual, double x, double y, double z) {
+    EXPECT_NEAR(actual.x, x, 1e-5);
+    EXPECT_NEAR(actual.y, y, 1e-5);
+    EXPECT_NEAR(actual.z, z, 1e-5);
+}
+
+void expect_pose(const XrPosef& actual, const physhand::Pose& expected) {
+    expect_position(actual.position, expected.position.x(), expected.position.y(),
+                    expected.position.z());
+    const XrQuaternionf& q = actual.orientation;
+    physhand::Quat got(q.w, q.x, q.y, q.z);
+    EXPECT_GT(std::abs(got.dot(expected.orientation)), 1 - 1e-6);
+}
+
+constexpr XrSpaceLocationFlags kAllLocationFlags =
+    XR_SPACE_LOCATION_POSITION_VALID_BIT | XR_SPACE_LOCATION_ORIENTATION_VALID_BIT |
+    XR_SPACE_LOCATION_POSITION_TRACKED_BIT | XR_SPACE_LOCATION_ORIENTATION_TRACKED_BIT;
+
+// Output of xrLocateHandJointsEXT with velocities chained; pinned, as it points into itself.
+struct HandJoints {
+    HandJoints() = default;
+    HandJoints(const HandJoints&) = delete;
+    HandJoints& operator=(const HandJoints&) = delete;
+
+    XrHandJointLocationsEXT locations =
+        xr<XrHandJointLocationsEXT>(XR_TYPE_HAND_JOINT_LOCATIONS_EXT);
+    XrHandJointVelocitiesEXT velocities =
+        xr<XrHandJointVelocitiesEXT>(XR_TYPE_HAND_JOINT_VELOCITIES_EXT);
+    std::array<XrHandJointLocationEXT, XR_HAND_JOINT_COUNT_EXT> joints{};
+    std::array<XrHandJointVelocityEXT, XR_HAND_JOINT_COUNT_EXT> joint_velocities{};
+};
+
+class SimRuntimeTest : public ::testing::Test {
+  protected:
+    static void SetUpTestSuite() {
+        setenv("XR_RUNTIME_JSON", PHYSHAND_SIM_RUNTIME_JSON, 1);
+        unsetenv("XR_LOADER_DEBUG");
+        // No layer may come between the test and the runtime, the project's implicit one
+        // included.
+        unsetenv("XR_ENABLE_API_LAYERS");
+        setenv("DISABLE_XR_APILAYER_PHYSHAND_physical_hands", "1", 1);
+    }
+
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        scene_path_ = std::filesystem::temp_directory_path() /
+                      (std::string("physhand_sim_runtime_test_") + info->name() + ".json");
+        std::ofstream(scene_path_) << kScene;
+        setenv("PHYSHAND_SIM_SCENE", scene_path_.c_str(), 1);
+    }
+
+    void TearDown() override {
+        if (instance_ != XR_NULL_HANDLE) {
+            EXPECT_EQ(xrDestroyInstance(instance_), XR_SUCCESS);
+        }
+        std::filesystem::remove(scene_path_);
+    }
+
+    XrResult create_instance(std::vector<const char*> extensions = {
+                                 XR_EXT_HAND_TRACKING_EXTENSION_NAME,
+                                 XR_MND_HEADLESS_EXTENSION_NAME}) {
+        auto info = xr<XrInstanceCreateInfo>(XR_TYPE_INSTANCE_CREATE_INFO);
+        std::strcpy(info.applicationInfo.applicationName, "sim_runtime_test");
+        info.applicationInfo.apiVersion = XR_CURRENT_API_VERSION;
+        info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+        info.enabledExtensionNames = extensions.data();
+        return xrCreateInstance(&info, &instance_);
+    }
+
+    void destroy_instance() {
+        ASSERT_EQ(xrDestroyInstance(instance_), XR_SUCCESS);
+        instance_ = XR_NULL_HANDLE;
+    }
+
+    XrSystemId system() {
+        auto info = xr<XrSystemGetInfo>(XR_TYPE_SYSTEM_GET_INFO);
+        info.formFactor = XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY;
+        XrSystemId id = XR_NULL_SYSTEM_ID;
+        EXPECT_EQ(xrGetSystem(instance_, &info, &id), XR_SUCCESS);
+        return id;
+    }
+
+    XrResult create_session(XrSession* session, const void* next = nullptr) {
+        auto info = xr<XrSessionCreateInfo>(XR_TYPE_SESSION_CREATE_INFO);
+        info.next = next;
+        info.systemId = system();
+        return xrCreateSession(instance_, &info, session);
+    }
+
+    XrSession session() {
+        XrSession created = XR_NULL_HANDLE;
+        EXPECT_EQ(create_session(&created), XR_SUCCESS);
+        return created;
+    }
+
+    // The next session state change, or nullopt when no event is queued.
+    std::optional<XrSessionState> poll_state() {
+        auto event = xr<XrEventDataBuffer>(XR_TYPE_EVENT_DATA_BUFFER);
+        XrResult result = xrPollEvent(instance_, &event);
+        if (result == XR_EVENT_UNAVAILABLE) return std::nullopt;
+        EXPECT_EQ(result, XR_SUCCESS);
+        EXPECT_EQ(event.type, XR_TYPE_EVENT_DATA_SESSION_STATE_CHANGED);
+        return reinterpret_cast<const XrEventDataSessionStateChanged&>(event).state;
+    }
+
+    void expect_states(std::initializer_list<XrSessionState> states) {
+        for (XrSessionState state : states) EXPECT_EQ(poll_state(), state);
+        EXPECT_EQ(poll_state(), std::nullopt);
+    }
+
+    static XrResult begin_session(XrSession session) {
+        auto info = xr<XrSessionBeginInfo>(XR_TYPE_SESSION_BEGIN_INFO);
+        info.primaryViewConfigurationType = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
+        return xrBeginSession(session, &info);
+    }
+
+    XrSession focused_session() {
+        XrSession created = session();
+        expect_states({XR_SESSION_STATE_IDLE, XR_SESSION_STATE_READY});
+        EXPECT_EQ(begin_session(created), XR_SUCCESS);
+        expect_states(
+            {XR_SESSION_STATE_SYNCHRONIZED, XR_SESSION_STATE_VISIBLE, XR_SESSION_STATE_FOCUSED});
+        return created;
+    }
+
+    static XrResult wait_frame(XrSession session, XrFrameState* state) {
+        auto info = xr<XrFrameWaitInfo>(XR_TYPE_FRAME_WAIT_INFO);
+        *state = xr<XrFrameState>(XR_TYPE_FRAME_STATE);
+        return xrWaitFrame(session, &info, state);
+    }
+
+    static XrResult end_frame(XrSession session, XrTime display_time) {
+        auto info = xr<XrFrameEndInfo>(XR_TYPE_FRAME_END_INFO);
+        info.displayTime = display_time;
+        info.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
+        return xrEndFrame(session, &info);
+    }
+
+    // One whole frame; returns its predicted display time.
+    static XrTime frame(XrSession session) {
+        XrFrameState state;
+        EXPECT_EQ(wait_frame(session, &state), XR_SUCCESS);
+        EXPECT_EQ(xrBeginFrame(session, nullptr), XR_SUCCESS);
+        EXPECT_EQ(end_frame(session, state.predictedDisplayTime), XR_SUCCESS);
+        return state.predictedDisplayTime;
+    }
+
+    static XrSpace reference_space(XrSession session, XrReferenceSpaceType type,
+                                   XrPosef pose = identity_pose()) {
+        auto info = xr<XrReferenceSpaceCreateInfo>(XR_TYPE_REFERENCE_SPACE_CREATE_INFO);
+        info.referenceSpaceType = type;
+        info.poseInReferenceSpace = pose;
+        XrSpace space = XR_NULL_HANDLE;
+        EXPECT_EQ(xrCreateReferenceSpace(session, &info, &space), XR_SUCCESS);
+        return space;
+    }
+
+    static XrSpaceLocation locate(XrSpace space, XrSpace base, XrTime time) {
+        auto location = xr<XrSpaceLocation>(XR_TYPE_SPACE_LOCATION);
+        EXPECT_EQ(xrLocateSpace(space, base, time, &location), XR_SUCCESS);
+        return location;
+    }
+
+    template <typename Pfn>
+    Pfn function(const char* name) {
+        PFN_xrVoidFunction fn = nullptr;
+        EXPECT_EQ(xrGetInstanceProcAddr(instance_, name, &fn), XR_SUCCESS) << name;
+        return reinterpret_cast<Pfn>(fn);
+    }
+
+    XrHandTrackerEXT hand_tracker(XrSession session, XrHandEXT hand) {
+        auto info = xr<XrHandTrackerCreateInfoEXT>(XR_TYPE_HAND_TRACKER_CREATE_INFO_EXT);
+        info.hand = hand;
+        info.handJointSet = XR_HAND_JOINT_SET_DEFAULT_EXT;
+        XrHandTrackerEXT tracker = XR_NULL_HANDLE;
+        EXPECT_EQ(function<PFN_xrCreateHandTrackerEXT>("xrCreateHandTrackerEXT")(session, &info,
+                                                                                 &tracker),
+                  XR_SUCCESS);
+        return tracker;
+    }
+
+    XrResult locate_joints(XrHandTrackerEXT tracker, XrSpace base, XrTime time, HandJoints& out,
+                           bool with_velocities = true) {
+        auto info = xr<XrHandJointsLocateInfoEXT>(XR_TYPE_HAND_JOINTS_LOCATE_INFO_EXT);
+        info.baseSpace = base;
+        info.time = time;
+        out.locations.next = with_velocities ? &out.velocities : nullptr;
+        out.locations.jointCount = XR_HAND_JOINT_COUNT_EXT;
+        out.locations.jointLocations = out.joints.data();
+        out.velocities.jointCount = XR_HAND_JOINT_COUNT_EXT;
+        out.velocities.jointVelocities = out.joint_velocities.data();
+        return function<PFN_xrLocateHandJointsEXT>("xrLocateHandJointsEXT")(tracker, &info,
+                                                                            &out.locations);
+    }
+
+    std::filesystem::path scene_path_;
+    XrInstance instance_ = XR_NULL_HANDLE;
+};
+
+TEST_F(SimRuntimeTest, AdvertisesExtensionsAndRejectsUnknownOnes) {
+    uint32_t count = 0;
+    ASSERT_EQ(xrEnumerateInstanceExtensionProperties(nullptr, 0, &count, nullptr), XR_SUCCESS);
+    std::vector<XrExtensionProperties> extensions(
+        count, xr<XrExtensionProperties>(XR_TYPE_EXTENSION_PROPERTIES));
+    ASSERT_EQ(xrEnumerateInstanceExtensionProperties(nullptr, count, &count, extensions.data()),
+              XR_SUCCESS);
+    auto has = [&](const char* name) {
+        for (const auto& e : extensions) {
+            if (std::strcmp(e.extensionName, name) == 0) return true;
+        }
+        return false;
+    };
+    EXPECT_TRUE(has(XR_EXT_HAND_TRACKING_EXTENSION_NAME));
+    EXPECT_TRUE(has(XR_MND_HEADLESS_EXTENSION_NAME));
+
+    EXPECT_EQ(create_instance({XR_MND_HEADLESS_EXTENSION_NAME, "XR_PHYSHAND_no_such_extension"}),
+              XR_ERROR_EXTENSION_NOT_PRESENT);
+    instance_ = XR_NULL_HANDLE;
+}
+
+TEST_F(SimRuntimeTest, DescribesItsSystem) {
+    ASSERT_EQ(create_instance(), XR_SUCCESS);
+    auto instance_properties = xr<XrInstanceProperties>(XR_TYPE_INSTANCE_PROPERTIES);
+    ASSERT_EQ(xrGetInstanceProperties(instance_, &instance_properties), XR_SUCCESS);
+    EXPECT_STREQ(instance_properties.runtimeName, "physhand simulated runtime");
+
+    auto handheld = xr<XrSystemGetInfo>(XR_TYPE_SYSTEM_GET_INFO);
+    handheld.formFactor = XR_FORM_FACTOR_HANDHELD_DISPLAY;
+    XrSystemId id = XR_NULL_SYSTEM_ID;
+    EXPECT_EQ(xrGetSystem(instance_, &handheld, &id), XR_ERROR_FORM_FACTOR_UNSUPPORTED);
+
+    auto hand = xr<XrSystemHandTrackingPropertiesEXT>(XR_TYPE_SYSTEM_HAND_TRACKING_PROPERTIES_EXT);
+    auto properties = xr<XrSystemProperties>(XR_TYPE_SYSTEM_PROPERTIES);
+    properties.next = &hand;
+    ASSERT_EQ(xrGetSystemProperties(instance_, system(), &properties), XR_SUCCESS);
+    EXPECT_EQ(hand.supportsHandTracking, XR_TRUE);
+    EXPECT_EQ(properties.graphicsProperties.maxLayerCount, 16u);
+    EXPECT_EQ(xrGetSystemProperties(instance_, system() + 1, &properties), XR_ERROR_SYSTEM_INVALID);
+
+    uint32_t count = 0;
+    std::array<XrViewConfigurationType, 4> configurations{};
+    ASSERT_EQ(xrEnumerateViewConfigurations(instance_, system(), 4, &count, configurations.data()),
+              XR_SUCCESS);
+    ASSERT_EQ(count, 1u);
+    EXPECT_EQ(configurations[0], XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO);
+
+    auto configuration = xr<XrViewConfigurationProperties>(XR_TYPE_VIEW_CONFIGURATION_PROPERTIES);
+    EXPECT_EQ(xrGetViewConfigurationProperties(
+                  instance_, system(), XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, &configuration),
+              XR_SUCCESS);
+    EXPECT_EQ(xrGetViewConfigurationProperties(
+                  instance_, system(), XR_VIEW_CONFIGURATION_TYPE_PRIMARY_MONO, &configuration),
+              XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED);
+
+    std::array<XrViewConfigurationView, 2> views{};
+    views.fill(xr<XrViewConfigurationView>(XR_TYPE_VIEW_CONFIGURATION_VIEW));
+    EXPECT_EQ(xrEnumerateViewConfigurationViews(instance_, system(),
+                                                XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, 1,
+                                                &count, views.data()),
+              XR_ERROR_SIZE_INSUFFICIENT);
+    EXPECT_EQ(count, 2u);
+    ASSERT_EQ(xrEnumerateViewConfigurationViews(instance_, system(),
+                                                XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, 2,
+                                                &count, views.data()),
+              XR_SUCCESS);
+    for (const auto& view : views) {
+        EXPECT_EQ(view.recommendedImageRectWidth, 1024u);
+        EXPECT_EQ(view.recommendedImageRectHeight, 1024u);
+    }
+
+    XrEnvironmentBlendMode blend{};
+    ASSERT_EQ(
+        xrEnumerateEnvironmentBlendModes(
+            instance_, system(), XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, 1, &count, &blend),
+        XR_SUCCESS);
+    EXPECT_EQ(blend, XR_ENVIRONMENT_BLEND_MODE_OPAQUE);
+
+    char name[XR_MAX_RESULT_STRING_SIZE];
+    ASSERT_EQ(xrResultToString(instance_, XR_ERROR_HANDLE_INVALID, name), XR_SUCCESS);
+    EXPECT_STREQ(name, "XR_ERROR_HANDLE_INVALID");
+    char type_name[XR_MAX_STRUCTURE_NAME_SIZE];
+    ASSERT_EQ(xrStructureTypeToString(instance_, XR_TYPE_SPACE_LOCATION, type_name), XR_SUCCESS);
+    EXPECT_STREQ(type_name, "XR_TYPE_SPACE_LOCATION");
+}
+
+TEST_F(SimRuntimeTest, InternsPaths) {
+    ASSERT_EQ(create_instance(), XR_SUCCESS);
+    XrPath path = XR_NULL_PATH, again = XR_NULL_PATH;
+    ASSERT_EQ(xrStringToPath(instance_, "/user/hand/right", &path), XR_SUCCESS);
+    ASSERT_EQ(xrStringToPath(instance_, "/user/hand/right", &again), XR_SUCCESS);
+    EXPECT_EQ(path, again);
+    char text[XR_MAX_PATH_LENGTH];
+    uint32_t count = 0;
+    ASSERT_EQ(xrPathToString(instance_, path, sizeof(text), &count, text), XR_SUCCESS);
+    EXPECT_STREQ(text, "/user/hand/right");
+    EXPECT_EQ(count, sizeof("/user/hand/right"));
+    EXPECT_EQ(xrStringToPath(instance_, "/user//hand", &path), XR_ERROR_PATH_FORMAT_INVALID);
+    EXPECT_EQ(xrStringToPath(instance_, "/User/hand", &path), XR_ERROR_PATH_FORMAT_INVALID);
+    EXPECT_EQ(xrPathToString(instance_, 12345, sizeof(text), &count, text), XR_ERROR_PATH_INVALID);
+}
+
+TEST_F(SimRuntimeTest, OnlyHeadlessSessionsAreCreated) {
+    ASSERT_EQ(create_instance({XR_EXT_HAND_TRACKING_EXTENSION_NAME}), XR_SUCCESS);
+    XrSession created = XR_NULL_HANDLE;
+    EXPECT_EQ(create_session(&created), XR_ERROR_GRAPHICS_DEVICE_INVALID);
+    destroy_instance();
+
+    ASSERT_EQ(create_instance(), XR_SUCCESS);
+    auto binding = xr<XrBaseInStructure>(XR_TYPE_GRAPHICS_BINDING_VULKAN_KHR);
+    EXPECT_EQ(create_session(&created, &binding), XR_ERROR_GRAPHICS_DEVICE_INVALID);
+    EXPECT_EQ(create_session(&created), XR_SUCCESS);
+}
+
+TEST_F(SimRuntimeTest, HeadlessSessionReachesFocusedOneStatePerPoll) {
+    ASSERT_EQ(create_instance(), XR_SUCCESS);
+    XrSession created = session();
+    EXPECT_EQ(begin_session(created), XR_ERROR_SESSION_NOT_READY);  // READY not yet polled
+    expect_states({XR_SESSION_STATE_IDLE, XR_SESSION_STATE_READY});
+    XrFrameState state;
+    EXPECT_EQ(wait_frame(created, &state), XR_ERROR_SESSION_NOT_RUNNING);
+    ASSERT_EQ(begin_session(created), XR_SUCCESS);
+    EXPECT_EQ(begin_session(created), XR_ERROR_SESSION_RUNNING);
+    expect_states(
+        {XR_SESSION_STATE_SYNCHRONIZED, XR_SESSION_STATE_VISIBLE, XR_SESSION_STATE_FOCUSED});
+    EXPECT_EQ(xrDestroySession(created), XR_SUCCESS);
+    EXPECT_EQ(xrDestroySession(created), XR_ERROR_HANDLE_INVALID);
+}
+
+TEST_F(SimRuntimeTest, FrameLoopAdvancesExactlyOnePeriod) {
+    ASSERT_EQ(create_instance(), XR_SUCCESS);
+    XrSession running = focused_session();
+    EXPECT_EQ(xrBeginFrame(running, nullptr), XR_ERROR_CALL_ORDER_INVALID);
+    EXPECT_EQ(end_frame(running, 1), XR_ERROR_CALL_ORDER_INVALID);
+
+    XrFrameState first;
+    ASSERT_EQ(wait_frame(running, &first), XR_SUCCESS);
+    EXPECT_GT(first.predictedDisplayTime, 0);
+    EXPECT_EQ(first.predictedDisplayPeriod, kPeriod);
+    EXPECT_EQ(first.shouldRender, XR_TRUE);
+    XrFrameState state;
+    EXPECT_EQ(wait_frame(running, &state), XR_ERROR_CALL_ORDER_INVALID);  // no xrBeginFrame
+    ASSERT_EQ(xrBeginFrame(running, nullptr), XR_SUCCESS);
+    ASSERT_EQ(end_frame(running, first.predictedDisplayTime), XR_SUCCESS);
+    EXPECT_EQ(end_frame(running, first.predictedDisplayTime), XR_ERROR_CALL_ORDER_INVALID);
+
+    for (XrTime n = 1; n <= 10; ++n)
+        EXPECT_EQ(frame(running), first.predictedDisplayTime + n * kPeriod);
+
+    // Beginning over an unended frame discards it.
+    ASSERT_EQ(wait_frame(running, &state), XR_SUCCESS);
+    ASSERT_EQ(xrBeginFrame(running, nullptr), XR_SUCCESS);
+    ASSERT_EQ(wait_frame(running, &state), XR_SUCCESS);
+    EXPECT_EQ(xrBeginFrame(running, nullptr), XR_FRAME_DISCARDED);
+    EXPECT_EQ(end_frame(running, state.predictedDisplayTime), XR_SUCCESS);
+    EXPECT_EQ(state.predictedDisplayTime, first.predictedDisplayTime + 12 * kPeriod);
+
+    // xrEndFrame checks what it is given; a failed call leaves the frame open.
+    ASSERT_EQ(wait_frame(running, &state), XR_SUCCESS);
+    ASSERT_EQ(xrBeginFrame(running, nullptr), XR_SUCCESS);
+    auto quad = xr<XrCompositionLayerQuad>(XR_TYPE_COMPOSITION_LAYER_QUAD);
+    quad.space = bogus_handle<XrSpace>();
+    std::vector<const XrCompositionLayerBaseHeader*> layers(
+        17, reinterpret_cast<const XrCompositionLayerBaseHeader*>(&quad));
+    auto end_info = xr<XrFrameEndInfo>(XR_TYPE_FRAME_END_INFO);
+    end_info.displayTime = state.predictedDisplayTime;
+    end_info.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
+    end_info.layerCount = static_cast<uint32_t>(layers.size());
+    end_info.layers = layers.data();
+    EXPECT_EQ(xrEndFrame(running, &end_info), XR_ERROR_LAYER_LIMIT_EXCEEDED);
+    end_info.layerCount = 1;
+    EXPECT_EQ(xrEndFrame(running, &end_info), XR_ERROR_HANDLE_INVALID);
+    quad.space = reference_space(running, XR_REFERENCE_SPACE_TYPE_LOCAL);
+    end_info.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_ADDITIVE;
+    EXPECT_EQ(xrEndFrame(running, &end_info), XR_ERROR_ENVIRONMENT_BLEND_MODE_UNSUPPORTED);
+    end_info.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
+    EXPECT_EQ(xrEndFrame(running, &end_info), XR_SUCCESS);
+}
+
+TEST_F(SimRuntimeTest, ReferenceSpacesLocate) {
+    ASSERT_EQ(create_instance(), XR_SUCCESS);
+    XrSession running = session();
+    const XrTime time = 1'000'000'000;
+
+    uint32_t count = 0;
+    std::array<XrReferenceSpaceType, 3> types{};
+    ASSERT_EQ(xrEnumerateReferenceSpaces(running, 3, &count, types.data()), XR_SUCCESS);
+    EXPECT_EQ(count, 3u);
+
+    XrSpace stage = reference_space(running, XR_REFERENCE_SPACE_TYPE_STAGE);
+    XrSpace local = reference_space(running, XR_REFERENCE_SPACE_TYPE_LOCAL);
+    XrSpace view = reference_space(running, XR_REFERENCE_SPACE_TYPE_VIEW);
+    XrSpaceLocation location = locate(local, stage, time);
+    EXPECT_EQ(location.locationFlags, kAllLocationFlags);
+    expect_pose(location.pose, {physhand::Vec3(0, kEyeHeight, 0), physhand::Quat::Identity()});
+    expect_pose(locate(stage, local, time).pose,
+                {physhand::Vec3(0, -kEyeHeight, 0), physhand::Quat::Identity()});
+    expect_pose(locate(view, stage, time).pose,
+                {physhand::Vec3(0, kEyeHeight, 0), physhand::Quat::Identity()});
+
+    // Offsets: A = LOCAL turned 90 degrees about +Y and moved 1 m along +X, B = STAGE
+    // moved 2 m along -Z. B seen from A is at (2, -1.6, -1), turned -90 degrees.
+    const float s = std::sqrt(0.5f);
+    XrSpace a = reference_space(running, XR_REFERENCE_SPACE_TYPE_LOCAL, {{0, s, 0, s}, {1, 0, 0}});
+    XrSpace b = reference_space(running, XR_REFERENCE_SPACE_TYPE_STAGE, {{0, 0, 0, 1}, {0, 0, -2}});
+    const physhand::Quat turn(Eigen::AngleAxisd(std::numbers::pi / 2, physhand::Vec3::UnitY()));
+    expect_pose(locate(a, stage, time).pose, {physhand::Vec3(1, kEyeHeight, 0), turn});
+    expect_pose(locate(b, a, time).pose, {physhand::Vec3(2, -kEyeHeight, -1), turn.inverse()});
+
+    auto velocity = xr<XrSpaceVelocity>(XR_TYPE_SPACE_VELOCITY);
+    location.next = &velocity;
+    ASSERT_EQ(xrLocateSpace(b, a, time, &location), XR_SUCCESS);
+    EXPECT_EQ(velocity.velocityFlags,
+              XR_SPACE_VELOCITY_LINEAR_VALID_BIT | XR_SPACE_VELOCITY_ANGULAR_VALID_BIT);
+
+    XrExtent2Df bounds;
+    EXPECT_EQ(xrGetReferenceSpaceBoundsRect(running, XR_REFERENCE_SPACE_TYPE_STAGE, &bounds),
+              XR_SPACE_BOUNDS_UNAVAILABLE);
+
+    auto view_info = xr<XrViewLocateInfo>(XR_TYPE_VIEW_LOCATE_INFO);
+    view_info.viewConfigurationType = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
+    view_info.displayTime = time;
+    view_info.space = stage;
+    auto view_state = xr<XrViewState>(XR_TYPE_VIEW_STATE);
+    std::array<XrView, 2> views{};
+    views.fill(xr<XrView>(XR_TYPE_VIEW));
+    ASSERT_EQ(xrLocateViews(running, &view_info, &view_state, 2, &count, views.data()), XR_SUCCESS);
+    ASSERT_EQ(count, 2u);
+    expect_position(views[0].pose.position, -0.032, kEyeHeight, 0);
+    expect_position(views[1].pose.position, 0.032, kEyeHeight, 0);
+    for (const XrView& v : views) {
+        EXPECT_NEAR(v.fov.angleLeft, -std::numbers::pi / 4, 1e-6);
+        EXPECT_NEAR(v.fov.angleRight, std::numbers::pi / 4, 1e-6);
+        EXPECT_NEAR(v.fov.angleUp, std::numbers::pi / 4, 1e-6);
+        EXPECT_NEAR(v.fov.angleDown, -std::numbers::pi / 4, 1e-6);
+    }
+
+    EXPECT_EQ(xrLocateSpace(local, stage, 0, &location), XR_ERROR_TIME_INVALID);
+    ASSERT_EQ(xrDestroySpace(b), XR_SUCCESS);
+    EXPECT_EQ(xrLocateSpace(b, stage, time, &location), XR_ERROR_HANDLE_INVALID);
+    EXPECT_EQ(xrLocateSpace(stage, bogus_handle<XrSpace>(), time, &location),
+              XR_ERROR_HANDLE_INVALID);
+    EXPECT_EQ(xrDestroySpace(b), XR_ERROR_HANDLE_INVALID);
+}
+
+TEST_F(SimRuntimeTest, HandJointsMatchTrackedHands) {
+    ASSERT_EQ(create_instance(), XR_SUCCESS);
+    const physhand::Scene scene = physhand::load_scene(scene_path_);
+    const physhand::TrackedHands tracked(scene);
+
+    XrSession running = focused_session();
+    XrSpace stage = reference_space(running, XR_REFERENCE_SPACE_TYPE_STAGE);
+    XrSpace local = reference_space(running, XR_REFERENCE_SPACE_TYPE_LOCAL);
+    XrHandTrackerEXT right = hand_tracker(running, XR_HAND_RIGHT_EXT);
+    XrHandTrackerEXT left = hand_tracker(running, XR_HAND_LEFT_EXT);
+
+    XrTime t0 = 0;
+    int active_frames = 0, dropped_frames = 0;
+    for (int n = 0; n < 40; ++n) {
+        XrTime time = frame(running);
+        if (n == 0) t0 = time;
+        const double t = scene_time(time, t0);
+        const physhand::HandPose expected = tracked.ghost(physhand::HandSide::Right, t);
+        const physhand::HandPose before = tracked.ghost(physhand::HandSide::Right, t - 1e-3);
+        SCOPED_TRACE(testing::Message() << "t = " << t);
+
+        HandJoints in_stage, in_local;
+        ASSERT_EQ(locate_joints(right, stage, time, in_stage), XR_SUCCESS);
+        ASSERT_EQ(locate_joints(right, local, time, in_local, false), XR_SUCCESS);
+        ASSERT_EQ(in_stage.locations.isActive, expected.active ? XR_TRUE : XR_FALSE);
+        (expected.active ? active_frames : dropped_frames)++;
+        for (std::size_t i = 0; i < XR_HAND_JOINT_COUNT_EXT; ++i) {
+            const XrHandJointLocationEXT& joint = in_stage.joints[i];
+            if (!expected.active) {
+                EXPECT_EQ(joint.locationFlags, 0u);
+                EXPECT_EQ(in_stage.joint_velocities[i].velocityFlags, 0u);
+                continue;
+            }
+            const physhand::Pose& pose = expected.joints[i];
+            EXPECT_EQ(joint.locationFlags, kAllLocationFlags);
+            expect_pose(joint.pose, pose);
+            EXPECT_NEAR(joint.radius, expected.radii[i], 1e-6);
+            expect_pose(in_local.joints[i].pose,
+                        {pose.position - physhand::Vec3(0, kEyeHeight, 0), pose.orientation});
+
+            if (!before.active) continue;
+            const XrHandJointVelocityEXT& velocity = in_stage.joint_velocities[i];
+            EXPECT_EQ(velocity.velocityFlags,
+                      XR_SPACE_VELOCITY_LINEAR_VALID_BIT | XR_SPACE_VELOCITY_ANGULAR_VALID_BIT);
+            const physhand::Vec3 linear = (pose.position - before.joints[i].position) / 1e-3;
+            expect_position(velocity.linearVelocity, linear.x(), linear.y(), linear.z());
+            Eigen::AngleAxisd turn(pose.orientation * before.joints[i].orientation.conjugate());
+            const physhand::Vec3 angular = turn.axis() * turn.angle() / 1e-3;
+            EXPECT_NEAR(velocity.angularVelocity.x, angular.x(), 1e-3);
+            EXPECT_NEAR(velocity.angularVelocity.y, angular.y(), 1e-3);
+            EXPECT_NEAR(velocity.angularVelocity.z, angular.z(), 1e-3);
+        }
+
+        HandJoints left_joints;
+        ASSERT_EQ(locate_joints(left, stage, time, left_joints), XR_SUCCESS);
+        EXPECT_EQ(left_joints.locations.isActive, XR_FALSE);
+        EXPECT_EQ(left_joints.joints[0].locationFlags, 0u);
+    }
+    EXPECT_GT(active_frames, 0);
+    EXPECT_GT(dropped_frames, 0);
+}
+
+TEST_F(SimRuntimeTest, DropoutMakesTheHandInactive) {
+    ASSERT_EQ(create_instance(), XR_SUCCESS);
+    XrSession running = focused_session();
+    XrSpace stage = reference_space(running, XR_REFERENCE_SPACE_TYPE_STAGE);
+    XrHandTrackerEXT right = hand_tracker(running, XR_HAND_RIGHT_EXT);
+    const XrTime t0 = frame(running);  // scene frame 1
+    const auto at = [&](double seconds) {
+        return t0 - kPeriod + static_cast<XrTime>(seconds * 1e9);
+    };
+
+    HandJoints joints;
+    ASSERT_EQ(locate_joints(right, stage, at(0.1), joints), XR_SUCCESS);
+    EXPECT_EQ(joints.locations.isActive, XR_TRUE);
+    ASSERT_EQ(locate_joints(right, stage, at((kDropoutFrom + kDropoutTo) / 2), joints), XR_SUCCESS);
+    EXPECT_EQ(joints.locations.isActive, XR_FALSE);
+    for (const auto& joint : joints.joints) EXPECT_EQ(joint.locationFlags, 0u);
+    ASSERT_EQ(locate_joints(right, stage, at(0.4), joints), XR_SUCCESS);
+    EXPECT_EQ(joints.locations.isActive, XR_TRUE);
+}
+
+TEST_F(SimRuntimeTest, WithoutASceneHandsAreNeverActive) {
+    unsetenv("PHYSHAND_SIM_SCENE");
+    ASSERT_EQ(create_instance(), XR_SUCCESS);
+    XrSession running = focused_session();
+    XrSpace stage = reference_space(running, XR_REFERENCE_SPACE_TYPE_STAGE);
+    XrHandTrackerEXT right = hand_tracker(running, XR_HAND_RIGHT_EXT);
+    for (int n = 0; n < 60; ++n) {  // longer than the scene would last
+        HandJoints joints;
+        ASSERT_EQ(locate_joints(right, stage, frame(running), joints), XR_SUCCESS);
+        EXPECT_EQ(joints.locations.isActive, XR_FALSE);
+    }
+    EXPECT_EQ(poll_state(), std::nullopt);  // and the session does not end on its own
+}
+
+TEST_F(SimRuntimeTest, RejectsInvalidHandlesAndArguments) {
+    ASSERT_EQ(create_instance(), XR_SUCCESS);
+    XrSession running = session();
+    XrSpace stage = reference_space(running, XR_REFERENCE_SPACE_TYPE_STAGE);
+    XrHandTrackerEXT right = hand_tracker(running, XR_HAND_RIGHT_EXT);
+    const XrTime time = 1'000'000'000;
+    HandJoints joints;
+    ASSERT_EQ(locate_joints(right, stage, time, joints), XR_SUCCESS);
+
+    auto info = xr<XrHandJointsLocateInfoEXT>(XR_TYPE_HAND_JOINTS_LOCATE_INFO_EXT);
+    info.baseSpace = stage;
+    info.time = time;
+    auto locate_raw = function<PFN_xrLocateHandJointsEXT>("xrLocateHandJointsEXT");
+    joints.locations.jointCount = 25;
+    EXPECT_EQ(locate_raw(right, &info, &joints.locations), XR_ERROR_VALIDATION_FAILURE);
+    joints.locations.jointCount = XR_HAND_JOINT_COUNT_EXT;
+    joints.velocities.jointCount = 27;
+    EXPECT_EQ(locate_raw(right, &info, &joints.locations), XR_ERROR_VALIDATION_FAILURE);
+    joints.locations.next = nullptr;
+    joints.locations.jointLocations = nullptr;
+    EXPECT_EQ(locate_raw(right, &info, &joints.locations), XR_ERROR_VALIDATION_FAILURE);
+    joints.locations.jointLocations = joints.joints.data();
+    joints.locations.type = XR_TYPE_SPACE_LOCATION;
+    EXPECT_EQ(locate_raw(right, &info, &joints.locations), XR_ERROR_VALIDATION_FAILURE);
+    joints.locations.type = XR_TYPE_HAND_JOINT_LOCATIONS_EXT;
+    info.type = XR_TYPE_SPACE_LOCATION;
+    EXPECT_EQ(locate_raw(right, &info, &joints.locations), XR_ERROR_VALIDATION_FAILURE);
+    info.type = XR_TYPE_HAND_JOINTS_LOCATE_INFO_EXT;
+    EXPECT_EQ(locate_raw(right, nullptr, &joints.locations), XR_ERROR_VALIDATION_FAILURE);
+    EXPECT_EQ(locate_raw(right, &info, nullptr), XR_ERROR_VALIDATION_FAILURE);
+    info.time = 0;
+    EXPECT_EQ(locate_raw(right, &info, &joints.locations), XR_ERROR_TIME_INVALID);
+    info.time = time;
+
+    EXPECT_EQ(locate_raw(bogus_handle<XrHandTrackerEXT>(), &info, &joints.locations),
+              XR_ERROR_HANDLE_INVALID);
+    info.baseSpace = bogus_handle<XrSpace>();
+    EXPECT_EQ(locate_raw(right, &info, &joints.locations), XR_ERROR_HANDLE_INVALID);
+    info.baseSpace = stage;
+    auto destroy = function<PFN_xrDestroyHandTrackerEXT>("xrDestroyHandTrackerEXT");
+    ASSERT_EQ(destroy(right), XR_SUCCESS);
+    EXPECT_EQ(locate_raw(right, &info, &joints.locations), XR_ERROR_HANDLE_INVALID);
+    EXPECT_EQ(destroy(right), XR_ERROR_HANDLE_INVALID);
+
+    auto create = function<PFN_xrCreateHandTrackerEXT>("xrCreateHandTrackerEXT");
+    auto create_info = xr<XrHandTrackerCreateInfoEXT>(XR_TYPE_HAND_TRACKER_CREATE_INFO_EXT);
+    create_info.hand = XR_HAND_LEFT_EXT;
+    create_info.handJointSet = static_cast<XrHandJointSetEXT>(1);
+    XrHandTrackerEXT tracker = XR_NULL_HANDLE;
+    EXPECT_EQ(create(running, &create_info, &tracker), XR_ERROR_VALIDATION_FAILURE);
+    create_info.handJointSet = XR_HAND_JOINT_SET_DEFAULT_EXT;
+    create_info.hand = static_cast<XrHandEXT>(3);
+    EXPECT_EQ(create(running, &create_info, &tracker), XR_ERROR_VALIDATION_FAILURE);
+    create_info.hand = XR_HAND_LEFT_EXT;
+    EXPECT_EQ(create(bogus_handle<XrSession>(), &create_info, &tracker), XR_ERROR_HANDLE_INVALID);
+
+    // Destroying a session destroys its spaces and trackers.
+    tracker = hand_tracker(running, XR_HAND_LEFT_EXT);
+    ASSERT_EQ(xrDestroySession(running), XR_SUCCESS);
+    EXPECT_EQ(destroy(tracker), XR_ERROR_HANDLE_INVALID);
+    EXPECT_EQ(xrDestroySpace(stage), XR_ERROR_HANDLE_INVALID);
+    EXPECT_EQ(begin_session(running), XR_ERROR_HANDLE_INVALID);
+}
+
+TEST_F(SimRuntimeTest, SceneEndStopsThenExits) {
+    ASSERT_EQ(create_instance(), XR_SUCCESS);
+    XrSession running = focused_session();
+    XrTime t0 = 0, last = 0;
+    std::vector<XrSessionState> states;
+    for (int n = 0; n < 100 && (states.empty() || states.back() != XR_SESSION_STATE_STOPPING);
+         ++n) {
+        last = frame(running);
+        if (n == 0) t0 = last;
+        while (auto state = poll_state()) states.push_back(*state);
+    }
+    EXPECT_EQ(states,
+              (std::vector<XrSessionState>{XR_SESSION_STATE_VISIBLE, XR_SESSION_STATE_SYNCHRONIZED,
+                                           XR_SESSION_STATE_STOPPING}));
+    // Stopped at the first frame displayed after the scene's duration.
+    EXPECT_GT(scene_time(last, t0), kDuration);
+    EXPECT_LE(scene_time(last - kPeriod, t0), kDuration);
+
+    ASSERT_EQ(xrEndSession(running), XR_SUCCESS);
+    expect_states({XR_SESSION_STATE_IDLE, XR_SESSION_STATE_EXITING});
+    XrFrameState state;
+    EXPECT_EQ(wait_frame(running, &state), XR_ERROR_SESSION_NOT_RUNNING);
+    EXPECT_EQ(xrEndSession(running), XR_ERROR_SESSION_NOT_RUNNING);
+}
+
+TEST_F(SimRuntimeTest, RequestExitStopsThenExits) {
+    ASSERT_EQ(create_instance(), XR_SUCCESS);
+    XrSession running = focused_session();
+    frame(running);
+    EXPECT_EQ(xrEndSession(running), XR_ERROR_SESSION_NOT_STOPPING);
+    ASSERT_EQ(xrRequestExitSession(running), XR_SUCCESS);
+    expect_states(
+        {XR_SESSION_STATE_VISIBLE, XR_SESSION_STATE_SYNCHRONIZED, XR_SESSION_STATE_STOPPING});
+    ASSERT_EQ(xrEndSession(running), XR_SUCCESS);
+    expect_states({XR_SESSION_STATE_IDLE, XR_SESSION_STATE_EXITING});
+    EXPECT_EQ(xrRequestExitSession(running), XR_ERROR_SESSION_NOT_RUNNING);
+}
+
+TEST_F(SimRuntimeTest, ActionsExistButAreNeverActive) {
+    ASSERT_EQ(create_instance(), XR_SUCCESS);
+    auto set_info = xr<XrActionSetCreateInfo>(XR_TYPE_ACTION_SET_CREATE_INFO);
+    std::strcpy(set_info.actionSetName, "gameplay");
+    std::strcpy(set_info.localizedActionSetName, "Gameplay");
+    XrActionSet set = XR_NULL_HANDLE;
+    ASSERT_EQ(xrCreateActionSet(instance_, &set_info, &set), XR_SUCCESS);
+    XrActionSet duplicate = XR_NULL_HANDLE;
+    EXPECT_EQ(xrCreateActionSet(instance_, &set_info, &duplicate), XR_ERROR_NAME_DUPLICATED);
+
+    auto action = [&](const char* name, XrActionType type) {
+        auto info = xr<XrActionCreateInfo>(XR_TYPE_ACTION_CREATE_INFO);
+        std::strcpy(info.actionName, name);
+        std::strcpy(info.localizedActionName, name);
+        info.actionType = type;
+        XrAction created = XR_NULL_HANDLE;
+        EXPECT_EQ(xrCreateAction(set, &info, &created), XR_SUCCESS);
+        return created;
+    };
+    XrAction select = action("select", XR_ACTION_TYPE_BOOLEAN_INPUT);
+    XrAction squeeze = action("squeeze", XR_ACTION_TYPE_FLOAT_INPUT);
+    XrAction aim = action("aim", XR_ACTION_TYPE_POSE_INPUT);
+
+    XrPath profile = XR_NULL_PATH, click = XR_NULL_PATH;
+    ASSERT_EQ(xrStringToPath(instance_, "/interaction_profiles/khr/simple_controller", &profile),
+              XR_SUCCESS);
+    ASSERT_EQ(xrStringToPath(instance_, "/user/hand/right/input/select/click", &click), XR_SUCCESS);
+    XrActionSuggestedBinding binding{select, click};
+    auto suggested =
+        xr<XrInteractionProfileSuggestedBinding>(XR_TYPE_INTERACTION_PROFILE_SUGGESTED_BINDING);
+    suggested.interactionProfile = profile;
+    suggested.countSuggestedBindings = 1;
+    suggested.suggestedBindings = &binding;
+    ASSERT_EQ(xrSuggestInteractionProfileBindings(instance_, &suggested), XR_SUCCESS);
+
+    XrSession running = focused_session();
+    XrActiveActionSet active{set, XR_NULL_PATH};
+    auto sync = xr<XrActionsSyncInfo>(XR_TYPE_ACTIONS_SYNC_INFO);
+    sync.countActiveActionSets = 1;
+    sync.activeActionSets = &active;
+    EXPECT_EQ(xrSyncActions(running, &sync), XR_ERROR_ACTIONSET_NOT_ATTACHED);
+    auto attach = xr<XrSessionActionSetsAttachInfo>(XR_TYPE_SESSION_ACTION_SETS_ATTACH_INFO);
+    attach.countActionSets = 1;
+    attach.actionSets = &set;
+    ASSERT_EQ(xrAttachSessionActionSets(running, &attach), XR_SUCCESS);
+    EXPECT_EQ(xrAttachSessionActionSets(running, &attach), XR_ERROR_ACTIONSETS_ALREADY_ATTACHED);
+    ASSERT_EQ(xrSyncActions(running, &sync), XR_SUCCESS);
+
+    auto get = xr<XrActionStateGetInfo>(XR_TYPE_ACTION_STATE_GET_INFO);
+    get.action = select;
+    auto boolean = xr<XrActionStateBoolean>(XR_TYPE_ACTION_STATE_BOOLEAN);
+    ASSERT_EQ(xrGetActionStateBoolean(running, &get, &boolean), XR_SUCCESS);
+    EXPECT_EQ(boolean.isActive, XR_FALSE);
+    auto value = xr<XrActionStateFloat>(XR_TYPE_ACTION_STATE_FLOAT);
+    EXPECT_EQ(xrGetActionStateFloat(running, &get, &value), XR_ERROR_ACTION_TYPE_MISMATCH);
+    get.action = squeeze;
+    ASSERT_EQ(xrGetActionStateFloat(running, &get, &value), XR_SUCCESS);
+    EXPECT_EQ(value.isActive, XR_FALSE);
+    get.action = aim;
+    auto pose = xr<XrActionStatePose>(XR_TYPE_ACTION_STATE_POSE);
+    ASSERT_EQ(xrGetActionStatePose(running, &get, &pose), XR_SUCCESS);
+    EXPECT_EQ(pose.isActive, XR_FALSE);
+
+    auto space_info = xr<XrActionSpaceCreateInfo>(XR_TYPE_ACTION_SPACE_CREATE_INFO);
+    space_info.action = aim;
+    space_info.poseInActionSpace = identity_pose();
+    XrSpace aim_space = XR_NULL_HANDLE;
+    ASSERT_EQ(xrCreateActionSpace(running, &space_info, &aim_space), XR_SUCCESS);
+    XrSpace stage = reference_space(running, XR_REFERENCE_SPACE_TYPE_STAGE);
+    EXPECT_EQ(locate(aim_space, stage, frame(running)).locationFlags, 0u);
+
+    EXPECT_EQ(xrDestroyActionSet(set), XR_SUCCESS);
+    EXPECT_EQ(xrDestroyAction(aim), XR_ERROR_HANDLE_INVALID);  // went with its set
+}
+
+TEST_F(SimRuntimeTest, HandTrackingFunctionsNeedTheExtension) {
+    ASSERT_EQ(create_instance({XR_MND_HEADLESS_EXTENSION_NAME}), XR_SUCCESS);
+    PFN_xrVoidFunction fn = nullptr;
+    EXPECT_EQ(xrGetInstanceProcAddr(instance_, "xrLocateHandJointsEXT", &fn),
+              XR_ERROR_FUNCTION_UNSUPPORTED);
+    EXPECT_EQ(fn, nullptr);
+}
+
+// The loader only walks the happy path of negotiation and filters unknown extensions
+// itself, so the runtime's own checks are exercised by opening the library directly.
+TEST_F(SimRuntimeTest, NegotiatesAndValidatesWithoutTheLoader) {
+    void* library = dlopen(PHYSHAND_SIM_RUNTIME_LIBRARY, RTLD_NOW | RTLD_LOCAL);
+    ASSERT_NE(library, nullptr) << dlerror();
+    auto negotiate = reinterpret_cast<PFN_xrNegotiateLoaderRuntimeInterface>(
+        dlsym(library, "xrNegotiateLoaderRuntimeInterface"));
+    ASSERT_NE(negotiate, nullptr);
+    EXPECT_EQ(dlsym(library, "xrCreateInstance"), nullptr);  // only the negotiation is exported
+
+    XrNegotiateLoaderInfo loader{
+        XR_LOADER_INTERFACE_STRUCT_LOADER_INFO, XR_LOADER_INFO_STRUCT_VERSION,
+        sizeof(XrNegotiateLoaderInfo),          1,
+        XR_CURRENT_LOADER_RUNTIME_VERSION,      XR_MAKE_VERSION(1, 0, 0),
+        XR_MAKE_VERSION(1, 0x3ff, 0xfff)};
+    XrNegotiateRuntimeRequest request{XR_LOADER_INTERFACE_STRUCT_RUNTIME_REQUEST,
+                                      XR_RUNTIME_INFO_STRUCT_VERSION,
+                                      sizeof(XrNegotiateRuntimeRequest),
+                                      0,
+                                      0,
+                                      nullptr};
+    loader.structSize = sizeof(XrNegotiateLoaderInfo) - 1;
+    EXPECT_EQ(negotiate(&loader, &request), XR_ERROR_INITIALIZATION_FAILED);
+    loader.structSize = sizeof(XrNegotiateLoaderInfo);
+    loader.minInterfaceVersion = XR_CURRENT_LOADER_RUNTIME_VERSION + 1;
+    loader.maxInterfaceVersion = XR_CURRENT_LOADER_RUNTIME_VERSION + 1;
+    EXPECT_EQ(negotiate(&loader, &request), XR_ERROR_INITIALIZATION_FAILED);
+    loader.minInterfaceVersion = 1;
+    loader.maxInterfaceVersion = XR_CURRENT_LOADER_RUNTIME_VERSION;
+    ASSERT_EQ(negotiate(&loader, &request), XR_SUCCESS);
+    EXPECT_EQ(request.runtimeInterfaceVersion, XR_CURRENT_LOADER_RUNTIME_VERSION);
+    EXPECT_EQ(XR_VERSION_MAJOR(request.runtimeApiVersion), 1);
+    PFN_xrGetInstanceProcAddr get_proc = request.getInstanceProcAddr;
+    ASSERT_NE(get_proc, nullptr);
+
+    PFN_xrVoidFunction fn = nullptr;
+    EXPECT_EQ(get_proc(XR_NULL_HANDLE, "xrGetSystem", &fn), XR_ERROR_HANDLE_INVALID);
+    ASSERT_EQ(get_proc(XR_NULL_HANDLE, "xrCreateInstance", &fn), XR_SUCCESS);
+    auto create = reinterpret_cast<PFN_xrCreateInstance>(fn);
+    auto info = xr<XrInstanceCreateInfo>(XR_TYPE_INSTANCE_CREATE_INFO);
+    std::strcpy(info.applicationInfo.applicationName, "sim_runtime_test");
+    info.applicationInfo.apiVersion = XR_CURRENT_API_VERSION;
+    const char* unknown = "XR_KHR_vulkan_enable2";
+    info.enabledExtensionCount = 1;
+    info.enabledExtensionNames = &unknown;
+    XrInstance direct = XR_NULL_HANDLE;
+    EXPECT_EQ(create(&info, &direct), XR_ERROR_EXTENSION_NOT_PRESENT);
+    info.enabledExtensionCount = 0;
+    ASSERT_EQ(create(&info, &direct), XR_SUCCESS);
+
+    EXPECT_EQ(get_proc(direct, "xrNoSuchFunction", &fn), XR_ERROR_FUNCTION_UNSUPPORTED);
+    EXPECT_EQ(get_proc(bogus_handle<XrInstance>(), "xrGetSystem", &fn), XR_ERROR_HANDLE_INVALID);
+    ASSERT_EQ(get_proc(direct, "xrDestroyInstance", &fn), XR_SUCCESS);
+    auto destroy = reinterpret_cast<PFN_xrDestroyInstance>(fn);
+    EXPECT_EQ(destroy(direct), XR_SUCCESS);
+    EXPECT_EQ(destroy(direct), XR_ERROR_HANDLE_INVALID);
+    dlclose(library);
+}
+
+}  // namespace

@@ -1,0 +1,209 @@
+// Sessions: the state machine (driven through xrPollEvent), the frame loop and the
+// virtual clock.
+
+#include "sim_runtime.h"
+
+namespace physhand::sim {
+namespace {
+
+// The display time of the latest waited frame; the first frame's before any.
+XrTime now(const InstanceData& instance) {
+    return kFirstDisplayTime + std::max<std::int64_t>(instance.frames_waited - 1, 0) * kFramePeriod;
+}
+
+void queue_state(InstanceData& instance, XrSession handle, SessionData& session,
+                 XrSessionState state) {
+    instance.events.push_back({handle, state, now(instance)});
+    session.queued_state = state;
+}
+
+// A running session steps down one state at a time, as real runtimes do, to STOPPING;
+// xrEndSession then takes it to EXITING so the application ends on its own.
+void queue_stopping(InstanceData& instance, XrSession handle, SessionData& session) {
+    if (session.stop_queued) return;
+    session.stop_queued = true;
+    if (session.queued_state == XR_SESSION_STATE_FOCUSED) {
+        queue_state(instance, handle, session, XR_SESSION_STATE_VISIBLE);
+    }
+    if (session.queued_state == XR_SESSION_STATE_VISIBLE) {
+        queue_state(instance, handle, session, XR_SESSION_STATE_SYNCHRONIZED);
+    }
+    queue_state(instance, handle, session, XR_SESSION_STATE_STOPPING);
+}
+
+// Any struct whose type is a graphics binding: matched by name (XR_TYPE_GRAPHICS_BINDING_*)
+// so that no graphics API the headers know is missed.
+bool has_graphics_binding(const void* next) {
+    constexpr std::string_view kPrefix = "XR_TYPE_GRAPHICS_BINDING_";
+    for (auto* s = static_cast<const XrBaseInStructure*>(next); s != nullptr; s = s->next) {
+        const char* name = structure_type_name(s->type);
+        if (name != nullptr && std::string_view(name).starts_with(kPrefix)) return true;
+    }
+    return false;
+}
+
+bool is_supported_layer(XrStructureType type) {
+    return type == XR_TYPE_COMPOSITION_LAYER_PROJECTION || type == XR_TYPE_COMPOSITION_LAYER_QUAD;
+}
+
+}  // namespace
+
+void destroy_session(Runtime& rt, XrSession session) {
+    SessionData* data = rt.sessions.find(session);
+    std::erase_if(rt.instances.find(data->instance)->events,
+                  [&](const StateChange& change) { return change.session == session; });
+    rt.spaces.erase_if([&](XrSpace, const SpaceData& space) { return space.session == session; });
+    rt.hand_trackers.erase_if([&](XrHandTrackerEXT, const HandTrackerData& tracker) {
+        return tracker.session == session;
+    });
+    rt.sessions.erase(session);
+}
+
+XrResult xrCreateSession(XrInstance instance, const XrSessionCreateInfo* createInfo,
+                         XrSession* session) {
+    return guarded([&](Runtime& rt) {
+        InstanceData* data = rt.instances.find(instance);
+        if (data == nullptr) return XR_ERROR_HANDLE_INVALID;
+        if (!has_type(createInfo, XR_TYPE_SESSION_CREATE_INFO) || session == nullptr) {
+            return XR_ERROR_VALIDATION_FAILURE;
+        }
+        if (createInfo->systemId != kSystemId) return XR_ERROR_SYSTEM_INVALID;
+        // Only headless sessions exist so far; XR_KHR_vulkan_enable2 will accept its binding
+        // here.
+        if (!data->headless || has_graphics_binding(createInfo->next)) {
+            return XR_ERROR_GRAPHICS_DEVICE_INVALID;
+        }
+        *session = rt.sessions.add(SessionData{.instance = instance});
+        SessionData& created = *rt.sessions.find(*session);
+        queue_state(*data, *session, created, XR_SESSION_STATE_IDLE);
+        queue_state(*data, *session, created, XR_SESSION_STATE_READY);
+        return XR_SUCCESS;
+    });
+}
+
+XrResult xrDestroySession(XrSession session) {
+    return guarded([&](Runtime& rt) {
+        if (rt.sessions.find(session) == nullptr) return XR_ERROR_HANDLE_INVALID;
+        destroy_session(rt, session);
+        return XR_SUCCESS;
+    });
+}
+
+XrResult xrBeginSession(XrSession session, const XrSessionBeginInfo* beginInfo) {
+    return guarded([&](Runtime& rt) {
+        SessionData* data = rt.sessions.find(session);
+        if (data == nullptr) return XR_ERROR_HANDLE_INVALID;
+        if (!has_type(beginInfo, XR_TYPE_SESSION_BEGIN_INFO)) return XR_ERROR_VALIDATION_FAILURE;
+        if (beginInfo->primaryViewConfigurationType != XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO) {
+            return XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED;
+        }
+        if (data->running) return XR_ERROR_SESSION_RUNNING;
+        if (data->state != XR_SESSION_STATE_READY) return XR_ERROR_SESSION_NOT_READY;
+        data->running = true;
+        InstanceData& instance = *rt.instances.find(data->instance);
+        queue_state(instance, session, *data, XR_SESSION_STATE_SYNCHRONIZED);
+        queue_state(instance, session, *data, XR_SESSION_STATE_VISIBLE);
+        queue_state(instance, session, *data, XR_SESSION_STATE_FOCUSED);
+        return XR_SUCCESS;
+    });
+}
+
+XrResult xrEndSession(XrSession session) {
+    return guarded([&](Runtime& rt) {
+        SessionData* data = rt.sessions.find(session);
+        if (data == nullptr) return XR_ERROR_HANDLE_INVALID;
+        if (!data->running) return XR_ERROR_SESSION_NOT_RUNNING;
+        if (data->state != XR_SESSION_STATE_STOPPING) return XR_ERROR_SESSION_NOT_STOPPING;
+        data->running = false;
+        data->frame_waited = false;
+        data->frame_begun = false;
+        InstanceData& instance = *rt.instances.find(data->instance);
+        queue_state(instance, session, *data, XR_SESSION_STATE_IDLE);
+        queue_state(instance, session, *data, XR_SESSION_STATE_EXITING);
+        return XR_SUCCESS;
+    });
+}
+
+XrResult xrRequestExitSession(XrSession session) {
+    return guarded([&](Runtime& rt) {
+        SessionData* data = rt.sessions.find(session);
+        if (data == nullptr) return XR_ERROR_HANDLE_INVALID;
+        if (!data->running) return XR_ERROR_SESSION_NOT_RUNNING;
+        queue_stopping(*rt.instances.find(data->instance), session, *data);
+        return XR_SUCCESS;
+    });
+}
+
+XrResult xrWaitFrame(XrSession session, const XrFrameWaitInfo* frameWaitInfo,
+                     XrFrameState* frameState) {
+    return guarded([&](Runtime& rt) {
+        SessionData* data = rt.sessions.find(session);
+        if (data == nullptr) return XR_ERROR_HANDLE_INVALID;
+        if ((frameWaitInfo != nullptr && frameWaitInfo->type != XR_TYPE_FRAME_WAIT_INFO) ||
+            !has_type(frameState, XR_TYPE_FRAME_STATE)) {
+            return XR_ERROR_VALIDATION_FAILURE;
+        }
+        if (!data->running) return XR_ERROR_SESSION_NOT_RUNNING;
+        // A real runtime would block this second wait until xrBeginFrame; with nothing to
+        // wait for, blocking would deadlock a single-threaded application instead.
+        if (data->frame_waited) return XR_ERROR_CALL_ORDER_INVALID;
+        data->frame_waited = true;
+        InstanceData& instance = *rt.instances.find(data->instance);
+        XrTime display_time = kFirstDisplayTime + instance.frames_waited * kFramePeriod;
+        ++instance.frames_waited;
+        frameState->predictedDisplayTime = display_time;
+        frameState->predictedDisplayPeriod = kFramePeriod;
+        frameState->shouldRender =
+            data->state == XR_SESSION_STATE_VISIBLE || data->state == XR_SESSION_STATE_FOCUSED;
+        if (instance.scene && scene_time(display_time) > instance.scene->duration_s) {
+            queue_stopping(instance, session, *data);
+        }
+        return XR_SUCCESS;
+    });
+}
+
+XrResult xrBeginFrame(XrSession session, const XrFrameBeginInfo* frameBeginInfo) {
+    return guarded([&](Runtime& rt) {
+        SessionData* data = rt.sessions.find(session);
+        if (data == nullptr) return XR_ERROR_HANDLE_INVALID;
+        if (frameBeginInfo != nullptr && frameBeginInfo->type != XR_TYPE_FRAME_BEGIN_INFO) {
+            return XR_ERROR_VALIDATION_FAILURE;
+        }
+        if (!data->running) return XR_ERROR_SESSION_NOT_RUNNING;
+        if (!data->frame_waited) return XR_ERROR_CALL_ORDER_INVALID;
+        data->frame_waited = false;
+        // Beginning over an unended frame discards that frame.
+        if (data->frame_begun) return XR_FRAME_DISCARDED;
+        data->frame_begun = true;
+        return XR_SUCCESS;
+    });
+}
+
+XrResult xrEndFrame(XrSession session, const XrFrameEndInfo* frameEndInfo) {
+    return guarded([&](Runtime& rt) {
+        SessionData* data = rt.sessions.find(session);
+        if (data == nullptr) return XR_ERROR_HANDLE_INVALID;
+        if (!has_type(frameEndInfo, XR_TYPE_FRAME_END_INFO) ||
+            (frameEndInfo->layerCount > 0 && frameEndInfo->layers == nullptr)) {
+            return XR_ERROR_VALIDATION_FAILURE;
+        }
+        if (!data->running) return XR_ERROR_SESSION_NOT_RUNNING;
+        if (!data->frame_begun) return XR_ERROR_CALL_ORDER_INVALID;
+        if (frameEndInfo->displayTime <= 0) return XR_ERROR_TIME_INVALID;
+        if (frameEndInfo->environmentBlendMode != XR_ENVIRONMENT_BLEND_MODE_OPAQUE) {
+            return XR_ERROR_ENVIRONMENT_BLEND_MODE_UNSUPPORTED;
+        }
+        if (frameEndInfo->layerCount > kMaxLayerCount) return XR_ERROR_LAYER_LIMIT_EXCEEDED;
+        // Layers are checked but not composed: a headless session has nothing to show.
+        for (uint32_t i = 0; i < frameEndInfo->layerCount; ++i) {
+            const XrCompositionLayerBaseHeader* layer = frameEndInfo->layers[i];
+            if (layer == nullptr || !is_supported_layer(layer->type)) return XR_ERROR_LAYER_INVALID;
+            const SpaceData* space = rt.spaces.find(layer->space);
+            if (space == nullptr || space->session != session) return XR_ERROR_HANDLE_INVALID;
+        }
+        data->frame_begun = false;
+        return XR_SUCCESS;
+    });
+}
+
+}  // namespace physhand::sim
