@@ -45,27 +45,34 @@ std::string SvgPlot::render() const {
     }
     x0 = std::floor(x0), x1 = std::max(std::ceil(x1), x0 + 1);
     y0 = std::floor(y0), y1 = std::max(std::ceil(y1), y0 + 1);
-    auto px = [&](double x) { return kLeft + (std::log10(std::max(x, kFloor)) - x0) / (x1 - x0) * (kW - kLeft - kRight); };
-    auto py = [&](double y) { return kH - kBottom - (std::log10(std::max(y, kFloor)) - y0) / (y1 - y0) * (kH - kTop - kBottom); };
+    auto px = [&](double x) {
+        return kLeft + (std::log10(std::max(x, kFloor)) - x0) / (x1 - x0) * (kW - kLeft - kRight);
+    };
+    auto py = [&](double y) {
+        return kH - kBottom -
+               (std::log10(std::max(y, kFloor)) - y0) / (y1 - y0) * (kH - kTop - kBottom);
+    };
 
     std::ostringstream o;
     o << "<svg xmlns='http://www.w3.org/2000/svg' width='" << kW << "' height='" << kH
-      << "' font-family='sans-serif' font-size='12'>\n<rect width='100%' height='100%' fill='white'/>\n";
-    o << "<text x='" << kW / 2 << "' y='20' text-anchor='middle' font-size='14'>" << title_ << "</text>\n";
+      << "' font-family='sans-serif' font-size='12'>\n<rect width='100%' height='100%' "
+         "fill='white'/>\n";
+    o << "<text x='" << kW / 2 << "' y='20' text-anchor='middle' font-size='14'>" << title_
+      << "</text>\n";
     for (double e = x0; e <= x1; ++e) {
         const double x = px(std::pow(10, e));
-        o << "<line x1='" << num(x) << "' y1='" << kTop << "' x2='" << num(x) << "' y2='" << kH - kBottom
-          << "' stroke='#ddd'/><text x='" << num(x) << "' y='" << kH - kBottom + 15 << "' text-anchor='middle'>"
-          << tick(std::pow(10, e)) << "</text>\n";
+        o << "<line x1='" << num(x) << "' y1='" << kTop << "' x2='" << num(x) << "' y2='"
+          << kH - kBottom << "' stroke='#ddd'/><text x='" << num(x) << "' y='" << kH - kBottom + 15
+          << "' text-anchor='middle'>" << tick(std::pow(10, e)) << "</text>\n";
     }
     for (double e = y0; e <= y1; ++e) {
         const double y = py(std::pow(10, e));
-        o << "<line x1='" << kLeft << "' y1='" << num(y) << "' x2='" << kW - kRight << "' y2='" << num(y)
-          << "' stroke='#ddd'/><text x='" << kLeft - 5 << "' y='" << num(y + 4) << "' text-anchor='end'>"
-          << tick(std::pow(10, e)) << "</text>\n";
+        o << "<line x1='" << kLeft << "' y1='" << num(y) << "' x2='" << kW - kRight << "' y2='"
+          << num(y) << "' stroke='#ddd'/><text x='" << kLeft - 5 << "' y='" << num(y + 4)
+          << "' text-anchor='end'>" << tick(std::pow(10, e)) << "</text>\n";
     }
-    o << "<text x='" << (kLeft + kW - kRight) / 2 << "' y='" << kH - 12 << "' text-anchor='middle'>" << x_label_
-      << "</text>\n<text transform='translate(16," << (kTop + kH - kBottom) / 2
+    o << "<text x='" << (kLeft + kW - kRight) / 2 << "' y='" << kH - 12 << "' text-anchor='middle'>"
+      << x_label_ << "</text>\n<text transform='translate(16," << (kTop + kH - kBottom) / 2
       << ") rotate(-90)' text-anchor='middle'>" << y_label_ << "</text>\n";
     for (std::size_t s = 0; s < series_.size(); ++s) {
         const char* colour = kColours[s % std::size(kColours)];
@@ -74,23 +81,28 @@ std::string SvgPlot::render() const {
             if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
             path << (path.tellp() > 0 ? " L" : "M") << num(px(p.x)) << ',' << num(py(p.y));
         }
-        o << "<path d='" << path.str() << "' fill='none' stroke='" << colour << "' stroke-width='1.5'/>\n";
+        o << "<path d='" << path.str() << "' fill='none' stroke='" << colour
+          << "' stroke-width='1.5'/>\n";
         for (const Point& p : series_[s].points) {
             if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
-            o << "<circle cx='" << num(px(p.x)) << "' cy='" << num(py(p.y)) << "' r='" << (p.highlighted ? 6 : 4)
-              << "' fill='" << (p.failed ? "white" : colour) << "' stroke='" << (p.highlighted ? "black" : colour)
-              << "' stroke-width='" << (p.highlighted ? 2 : 1) << "'/><text x='" << num(px(p.x) + 7) << "' y='"
+            o << "<circle cx='" << num(px(p.x)) << "' cy='" << num(py(p.y)) << "' r='"
+              << (p.highlighted ? 6 : 4) << "' fill='" << (p.failed ? "white" : colour)
+              << "' stroke='" << (p.highlighted ? "black" : colour) << "' stroke-width='"
+              << (p.highlighted ? 2 : 1) << "'/><text x='" << num(px(p.x) + 7) << "' y='"
               << num(py(p.y) - 6) << "' font-size='10'>" << p.label << "</text>\n";
         }
         const double ly = kTop + 20 * static_cast<double>(s);
-        o << "<line x1='" << kW - kRight + 15 << "' y1='" << ly << "' x2='" << kW - kRight + 35 << "' y2='" << ly
-          << "' stroke='" << colour << "' stroke-width='2'/><text x='" << kW - kRight + 40 << "' y='" << ly + 4
-          << "'>" << series_[s].name << "</text>\n";
+        o << "<line x1='" << kW - kRight + 15 << "' y1='" << ly << "' x2='" << kW - kRight + 35
+          << "' y2='" << ly << "' stroke='" << colour << "' stroke-width='2'/><text x='"
+          << kW - kRight + 40 << "' y='" << ly + 4 << "'>" << series_[s].name << "</text>\n";
     }
     const double ly = kTop + 20 * static_cast<double>(series_.size()) + 10;
-    o << "<circle cx='" << kW - kRight + 25 << "' cy='" << ly << "' r='6' fill='white' stroke='black' stroke-width='2'/>"
+    o << "<circle cx='" << kW - kRight + 25 << "' cy='" << ly
+      << "' r='6' fill='white' stroke='black' stroke-width='2'/>"
       << "<text x='" << kW - kRight + 40 << "' y='" << ly + 4 << "'>Pareto front</text>\n"
-      << "<text x='" << kW - kRight + 15 << "' y='" << ly + 24 << "' font-size='10'>labels: substeps;</text>"
-      << "<text x='" << kW - kRight + 15 << "' y='" << ly + 36 << "' font-size='10'>hollow: failed</text>\n</svg>\n";
+      << "<text x='" << kW - kRight + 15 << "' y='" << ly + 24
+      << "' font-size='10'>labels: substeps;</text>"
+      << "<text x='" << kW - kRight + 15 << "' y='" << ly + 36
+      << "' font-size='10'>hollow: failed</text>\n</svg>\n";
     return o.str();
 }

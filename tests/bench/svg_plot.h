@@ -5,7 +5,7 @@
 
 // A small log-log scatter plot with one line per series, written as SVG.
 class SvgPlot {
-public:
+  public:
     struct Point {
         double x, y;
         std::string label;
@@ -16,7 +16,7 @@ public:
     void add_series(const std::string& name, const std::vector<Point>& points);
     std::string render() const;
 
-private:
+  private:
     struct Series {
         std::string name;
         std::vector<Point> points;

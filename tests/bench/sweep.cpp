@@ -50,7 +50,8 @@ double Row::error() const {
     return m.jitter_mm;
 }
 
-Row measure(const Scene& scene, const SceneAxis& axis, const std::string& drive, int substeps, int repeat) {
+Row measure(const Scene& scene, const SceneAxis& axis, const std::string& drive, int substeps,
+            int repeat) {
     RunOptions options;
     options.drive = drive;
     options.substeps = substeps;
@@ -78,7 +79,8 @@ std::vector<bool> pareto(const std::vector<Row>& rows) {
     for (std::size_t i = 0; i < rows.size(); ++i) {
         if (!rows[i].usable()) continue;
         front[i] = std::none_of(rows.begin(), rows.end(), [&](const Row& o) {
-            return o.usable() && o.m.step_us_median <= rows[i].m.step_us_median && o.error() <= rows[i].error() &&
+            return o.usable() && o.m.step_us_median <= rows[i].m.step_us_median &&
+                   o.error() <= rows[i].error() &&
                    (o.m.step_us_median < rows[i].m.step_us_median || o.error() < rows[i].error());
         });
     }
@@ -100,9 +102,12 @@ int main(int argc, char** argv) {
     int repeat = 3;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
-        if (a == "--out" && i + 1 < argc) out = argv[++i];
-        else if (a == "--repeat" && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
-        else if (a == "--scenes" && i + 1 < argc) scenes_dir = argv[++i];
+        if (a == "--out" && i + 1 < argc)
+            out = argv[++i];
+        else if (a == "--repeat" && i + 1 < argc)
+            repeat = std::max(1, std::atoi(argv[++i]));
+        else if (a == "--scenes" && i + 1 < argc)
+            scenes_dir = argv[++i];
         else {
             std::cerr << "usage: physhand-sweep [--out DIR] [--repeat N] [--scenes DIR]\n";
             return 2;
@@ -110,8 +115,10 @@ int main(int argc, char** argv) {
     }
     fs::create_directories(out);
     std::ofstream csv(out / "sweep.csv");
-    csv << "scene,drive,substeps,step_us_median,step_us_p99,tracking_error_rms_mm,tracking_error_p99_mm,"
-           "max_penetration_mm,slip_mm,jitter_mm,ghost_jitter_mm,max_body_speed,nonfinite_count,success\n";
+    csv << "scene,drive,substeps,step_us_median,step_us_p99,tracking_error_rms_mm,tracking_error_"
+           "p99_mm,"
+           "max_penetration_mm,slip_mm,jitter_mm,ghost_jitter_mm,max_body_speed,nonfinite_count,"
+           "success\n";
     std::ostringstream md;
     const DriveSettings& chosen = default_drive();
     std::vector<std::string> verdicts;
@@ -122,28 +129,32 @@ int main(int argc, char** argv) {
             for (int n : kSubsteps) rows.push_back(measure(scene, axis, d.name, n, repeat));
         }
         const std::vector<bool> front = pareto(rows);
-        md << "\n### " << axis.scene << " (error: " << axis.metric << ")\n\n![" << axis.scene << "](bench/" << axis.scene
-           << ".svg)\n\n| drive | substeps | step_us median | p99 | " << axis.metric
+        md << "\n### " << axis.scene << " (error: " << axis.metric << ")\n\n![" << axis.scene
+           << "](bench/" << axis.scene << ".svg)\n\n| drive | substeps | step_us median | p99 | "
+           << axis.metric
            << " | success | nonfinite | Pareto |\n|---|---|---|---|---|---|---|---|\n";
-        SvgPlot plot(axis.scene + ": run time against error", "step_us median (µs per 90 Hz frame)", axis.metric);
+        SvgPlot plot(axis.scene + ": run time against error", "step_us median (µs per 90 Hz frame)",
+                     axis.metric);
         std::map<std::string, std::vector<std::size_t>> by_drive;
         for (std::size_t i = 0; i < rows.size(); ++i) {
             const Row& r = rows[i];
-            csv << r.scene << ',' << r.drive << ',' << r.substeps << ',' << r.m.step_us_median << ',' << r.m.step_us_p99 << ','
-                << r.m.tracking_error_rms_mm << ',' << r.m.tracking_error_p99_mm << ',' << r.m.max_penetration_mm << ','
-                << (std::isnan(r.slip_mm) ? std::string() : std::to_string(r.slip_mm)) << ',' << r.m.jitter_mm << ','
-                << r.m.ghost_jitter_mm << ',' << r.m.max_body_speed << ',' << r.m.nonfinite_count << ','
-                << (r.success ? "true" : "false") << '\n';
-            md << "| " << r.drive << " | " << r.substeps << " | " << fmt(r.m.step_us_median, 0) << " | "
-               << fmt(r.m.step_us_p99, 0) << " | " << fmt(r.error()) << " | " << (r.success ? "yes" : "**no**") << " | "
-               << r.m.nonfinite_count << " | " << (front[i] ? "●" : "") << " |\n";
+            csv << r.scene << ',' << r.drive << ',' << r.substeps << ',' << r.m.step_us_median
+                << ',' << r.m.step_us_p99 << ',' << r.m.tracking_error_rms_mm << ','
+                << r.m.tracking_error_p99_mm << ',' << r.m.max_penetration_mm << ','
+                << (std::isnan(r.slip_mm) ? std::string() : std::to_string(r.slip_mm)) << ','
+                << r.m.jitter_mm << ',' << r.m.ghost_jitter_mm << ',' << r.m.max_body_speed << ','
+                << r.m.nonfinite_count << ',' << (r.success ? "true" : "false") << '\n';
+            md << "| " << r.drive << " | " << r.substeps << " | " << fmt(r.m.step_us_median, 0)
+               << " | " << fmt(r.m.step_us_p99, 0) << " | " << fmt(r.error()) << " | "
+               << (r.success ? "yes" : "**no**") << " | " << r.m.nonfinite_count << " | "
+               << (front[i] ? "●" : "") << " |\n";
             by_drive[r.drive].push_back(i);
         }
         for (const auto& [drive, idx] : by_drive) {
             std::vector<SvgPlot::Point> pts;
             for (std::size_t i : idx) {
-                pts.push_back({rows[i].m.step_us_median, rows[i].error(), std::to_string(rows[i].substeps), front[i],
-                               !rows[i].usable()});
+                pts.push_back({rows[i].m.step_us_median, rows[i].error(),
+                               std::to_string(rows[i].substeps), front[i], !rows[i].usable()});
             }
             plot.add_series(drive, pts);
         }
@@ -151,14 +162,16 @@ int main(int argc, char** argv) {
 
         for (std::size_t i = 0; i < rows.size(); ++i) {
             if (rows[i].drive != chosen.name || rows[i].substeps != chosen.substeps) continue;
-            std::string v = "- " + axis.scene + ": default (" + chosen.name + ", " + std::to_string(chosen.substeps) +
-                            " substeps) " + (front[i] ? "is on the Pareto front" : "is NOT on the Pareto front");
+            std::string v = "- " + axis.scene + ": default (" + chosen.name + ", " +
+                            std::to_string(chosen.substeps) + " substeps) " +
+                            (front[i] ? "is on the Pareto front" : "is NOT on the Pareto front");
             // Against every stable paper configuration: faster and more accurate?
             int beaten = 0, stable = 0;
             for (const Row& p : rows) {
                 if (p.drive != "paper" || !p.usable()) continue;
                 ++stable;
-                beaten += rows[i].m.step_us_median < p.m.step_us_median && rows[i].error() <= p.error();
+                beaten +=
+                    rows[i].m.step_us_median < p.m.step_us_median && rows[i].error() <= p.error();
             }
             v += "; ahead of paper on both axes against " + std::to_string(beaten) + " of its " +
                  std::to_string(stable) + " usable configurations.";
@@ -169,6 +182,7 @@ int main(int argc, char** argv) {
     report << "## Default drive against the sweep\n\n";
     for (const std::string& v : verdicts) report << v << "\n";
     report << md.str();
-    std::cout << "wrote " << (out / "sweep.csv") << ", " << (out / "sweep.md") << " and one SVG per scene\n";
+    std::cout << "wrote " << (out / "sweep.csv") << ", " << (out / "sweep.md")
+              << " and one SVG per scene\n";
     return 0;
 }

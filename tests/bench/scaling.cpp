@@ -1,0 +1,175 @@
+// physhand-scaling: physics cost against the number of dynamic colliders, with both hands
+// in contact with a pile, both far from everything, and one hand near; and what gating and
+// sleeping save on the sample scenes (each switched off, as a ratio).
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "run_metrics.h"
+#include "scene.h"
+#include "scene_run.h"
+#include "svg_plot.h"
+
+namespace fs = std::filesystem;
+using namespace physhand;
+
+namespace {
+
+const std::vector<int> kCounts = {0, 10, 50, 200, 1000};
+
+enum class Placement { BothInContact, BothFar, OneNear };
+const char* name_of(Placement p) {
+    switch (p) {
+        case Placement::BothInContact:
+            return "both hands in contact";
+        case Placement::BothFar:
+            return "both hands far (gated)";
+        case Placement::OneNear:
+            return "one hand near";
+    }
+    return "";
+}
+
+Collider box(const std::string& id, const Vec3& c, const Vec3& half, Motion motion, double mass) {
+    Collider b;
+    b.id = id;
+    b.shape.half_extents = half;
+    b.motion = motion;
+    b.mass = mass;
+    b.pose.position = c;
+    return b;
+}
+
+// A hand pressing down into the middle of the pile and sweeping through it.
+HandScript pressing_hand(double x, double top, bool near) {
+    HandScript h;
+    h.interpolation = Interpolation::Smooth;
+    const double y = near ? top + 0.02 : top + 0.6;
+    for (int k = 0; k <= 12; ++k) {
+        Keyframe key;
+        key.t = 0.5 * k;
+        key.wrist.position = Vec3(x + 0.05 * std::sin(k), y - (near && k > 0 ? 0.04 : 0.0),
+                                  -0.4 + 0.04 * std::cos(k));
+        key.articulation.curl.fill(0.2);
+        h.keyframes.push_back(key);
+    }
+    return h;
+}
+
+// n cubes of 4 cm in a square pile on a 2 m table, layered as needed.
+Scene pile_scene(int n, Placement placement) {
+    Scene s;
+    s.name = "pile_" + std::to_string(n);
+    s.duration_s = 6.0;
+    s.colliders.push_back(
+        box("table", Vec3(0, 0.725, -0.4), Vec3(1.0, 0.025, 1.0), Motion::Static, 0));
+    const int side = std::max(1, static_cast<int>(std::ceil(std::sqrt(std::min(n, 400)))));
+    double top = 0.75;
+    for (int i = 0; i < n; ++i) {
+        const int layer = i / (side * side), row = (i / side) % side, col = i % side;
+        const Vec3 c(-0.021 * (side - 1) + 0.042 * col, 0.77 + 0.04 * layer,
+                     -0.4 - 0.021 * (side - 1) + 0.042 * row);
+        s.colliders.push_back(
+            box("cube" + std::to_string(i), c, Vec3::Constant(0.02), Motion::Dynamic, 0.05));
+        top = std::max(top, c.y() + 0.02);
+    }
+    s.hands[static_cast<int>(HandSide::Left)] =
+        pressing_hand(-0.12, top, placement == Placement::BothInContact);
+    s.hands[static_cast<int>(HandSide::Right)] =
+        pressing_hand(0.12, top, placement != Placement::BothFar);
+    return s;
+}
+
+double median_step_us(const Scene& scene, const RunOptions& options, int repeat) {
+    std::vector<double> medians;
+    for (int i = 0; i < repeat; ++i)
+        medians.push_back(run_scene(scene, options).metrics.step_us_median);
+    return quantile(medians, 0.5);
+}
+
+std::string fmt(double v, const char* f = "%.0f") {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, f, v);
+    return buf;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    fs::path out = "bench-out";
+    fs::path scenes_dir = PHYSHAND_SCENES_DIR;
+    int repeat = 3;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--out" && i + 1 < argc)
+            out = argv[++i];
+        else if (a == "--repeat" && i + 1 < argc)
+            repeat = std::max(1, std::atoi(argv[++i]));
+        else if (a == "--scenes" && i + 1 < argc)
+            scenes_dir = argv[++i];
+        else {
+            std::cerr << "usage: physhand-scaling [--out DIR] [--repeat N] [--scenes DIR]\n";
+            return 2;
+        }
+    }
+    fs::create_directories(out);
+    std::ofstream csv(out / "scaling.csv");
+    csv << "placement,dynamic_colliders,step_us_median\n";
+    std::ofstream md(out / "scaling.md");
+    md << "\n## Scaling\n\nstep_us median (default drive) against the number of dynamic 4 cm cubes "
+          "piled on a "
+          "table; the hands press into the pile and sweep through it for 6 s (the pile starts at "
+          "rest, and "
+          "sleeps once settled unless a hand is in it).\n\n![scaling](bench/scaling.svg)\n\n"
+          "| dynamic colliders |";
+    for (Placement p : {Placement::BothInContact, Placement::OneNear, Placement::BothFar})
+        md << ' ' << name_of(p) << " |";
+    md << "\n|---|---|---|---|\n";
+    SvgPlot plot("Scaling: cost against dynamic colliders", "dynamic colliders (+1)",
+                 "step_us median");
+    std::vector<std::vector<SvgPlot::Point>> series(3);
+    for (int n : kCounts) {
+        md << "| " << n << " |";
+        int k = 0;
+        for (Placement p : {Placement::BothInContact, Placement::OneNear, Placement::BothFar}) {
+            const double us = median_step_us(pile_scene(n, p), RunOptions{}, repeat);
+            csv << '"' << name_of(p) << "\"," << n << ',' << us << '\n';
+            md << ' ' << fmt(us) << " |";
+            series[k++].push_back({n + 1.0, us, std::to_string(n), false, false});
+        }
+        md << '\n';
+    }
+    int k = 0;
+    for (Placement p : {Placement::BothInContact, Placement::OneNear, Placement::BothFar})
+        plot.add_series(name_of(p), series[k++]);
+    std::ofstream(out / "scaling.svg") << plot.render();
+
+    md << "\n## What skipping saves\n\nstep_us median with each skip switched off, divided by the "
+          "same run with "
+          "everything on (default drive; higher is more saved).\n\n| scene | on (µs) | no gating | "
+          "no sleeping |\n"
+          "|---|---|---|---|\n";
+    std::vector<std::pair<std::string, Scene>> cases = {
+        {"pile of 50, both hands far", pile_scene(50, Placement::BothFar)},
+        {"pile of 50, one hand near", pile_scene(50, Placement::OneNear)}};
+    for (const char* name :
+         {"free_motion", "press_table", "lift_hold", "stack", "throw", "sphere"}) {
+        cases.emplace_back(name, load_scene(scenes_dir / (std::string(name) + ".json")));
+    }
+    for (const auto& [label, scene] : cases) {
+        RunOptions on, no_gating, no_sleeping;
+        no_gating.gating = false;
+        no_sleeping.sleeping = false;
+        const double base = median_step_us(scene, on, repeat);
+        md << "| " << label << " | " << fmt(base) << " | "
+           << fmt(median_step_us(scene, no_gating, repeat) / base, "%.2f") << "× | "
+           << fmt(median_step_us(scene, no_sleeping, repeat) / base, "%.2f") << "× |\n";
+    }
+    std::cout << "wrote " << (out / "scaling.csv") << ", " << (out / "scaling.md")
+              << " and scaling.svg\n";
+    return 0;
+}
