@@ -19,11 +19,12 @@ inline XrVector3f to_xr(const Vec3& v) {
     return {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())};
 }
 
-// Normalised in double precision: poses from apps and runtimes are unit only to float
-// precision. A zero or NaN quaternion stays invalid, for the physics' input guards to see.
+// Exactly the floats given, not renormalised: the physics normalises what needs it (its
+// input guards, Bullet's transforms), the same way for the layer and for the physics-only
+// runner, so both simulate bit-identical worlds from the same scene.
 inline Pose to_pose(const XrPosef& p) {
     const XrQuaternionf& q = p.orientation;
-    return {to_vec3(p.position), Quat(q.w, q.x, q.y, q.z).normalized()};
+    return {to_vec3(p.position), Quat(q.w, q.x, q.y, q.z)};
 }
 inline XrPosef to_xr(const Pose& p) {
     const Quat& q = p.orientation;

@@ -1,0 +1,193 @@
+#include "xr_app.h"
+
+#include <openxr/physhand_physical_hands.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "frame_clock.h"
+#include "xr_check.h"
+
+namespace physhand::sample {
+
+namespace {
+
+// How long the app waits, at the start and at the end, for the runtime to move the session
+// on before it gives up.
+constexpr std::chrono::seconds kStateChangeTimeout{10};
+
+// What the app enables; the layer's extension first, as the likeliest to be missing.
+constexpr std::array<const char*, 3> kExtensions = {XR_PHYSHAND_PHYSICAL_HANDS_EXTENSION_NAME,
+                                                    XR_EXT_HAND_TRACKING_EXTENSION_NAME,
+                                                    XR_MND_HEADLESS_EXTENSION_NAME};
+
+// Throws unless the loader offers every extension the app needs.
+void check_extensions() {
+    std::uint32_t count = 0;
+    xr_check(XR_NULL_HANDLE, xrEnumerateInstanceExtensionProperties(nullptr, 0, &count, nullptr),
+             "xrEnumerateInstanceExtensionProperties");
+    XrExtensionProperties blank{};
+    blank.type = XR_TYPE_EXTENSION_PROPERTIES;
+    std::vector<XrExtensionProperties> properties(count, blank);
+    xr_check(XR_NULL_HANDLE,
+             xrEnumerateInstanceExtensionProperties(nullptr, count, &count, properties.data()),
+             "xrEnumerateInstanceExtensionProperties");
+    for (const char* name : kExtensions) {
+        const bool offered = std::any_of(properties.begin(), properties.end(), [&](const auto& p) {
+            return std::strcmp(p.extensionName, name) == 0;
+        });
+        if (offered) continue;
+        if (name == kExtensions[0]) {
+            throw std::runtime_error(
+                "the physhand layer is not active (no " XR_PHYSHAND_PHYSICAL_HANDS_EXTENSION_NAME
+                " extension); is its manifest found, and "
+                "DISABLE_XR_APILAYER_PHYSHAND_physical_hands unset?");
+        }
+        throw std::runtime_error(std::string("the runtime lacks ") + name);
+    }
+}
+
+}  // namespace
+
+XrApp::XrApp(const Scene& scene) : scene_(scene) {
+    check_extensions();
+    XrInstanceCreateInfo instance_info{};
+    instance_info.type = XR_TYPE_INSTANCE_CREATE_INFO;
+    std::strncpy(instance_info.applicationInfo.applicationName, "physhand-sample",
+                 XR_MAX_APPLICATION_NAME_SIZE - 1);
+    instance_info.applicationInfo.applicationVersion = 1;
+    instance_info.applicationInfo.apiVersion = XR_CURRENT_API_VERSION;
+    instance_info.enabledExtensionCount = static_cast<std::uint32_t>(kExtensions.size());
+    instance_info.enabledExtensionNames = kExtensions.data();
+    XrInstance instance = XR_NULL_HANDLE;
+    xr_check(XR_NULL_HANDLE, xrCreateInstance(&instance_info, &instance), "xrCreateInstance");
+    instance_ = XrHandle<XrInstance>(instance, xrDestroyInstance);
+
+    XrSystemGetInfo system_info{};
+    system_info.type = XR_TYPE_SYSTEM_GET_INFO;
+    system_info.formFactor = XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY;
+    XrSystemId system = XR_NULL_SYSTEM_ID;
+    xr_check(instance, xrGetSystem(instance, &system_info, &system), "xrGetSystem");
+
+    // No graphics binding: XR_MND_headless.
+    XrSessionCreateInfo session_info{};
+    session_info.type = XR_TYPE_SESSION_CREATE_INFO;
+    session_info.systemId = system;
+    XrSession session = XR_NULL_HANDLE;
+    xr_check(instance, xrCreateSession(instance, &session_info, &session), "xrCreateSession");
+    session_ = XrHandle<XrSession>(session, xrDestroySession);
+
+    XrReferenceSpaceCreateInfo space_info{};
+    space_info.type = XR_TYPE_REFERENCE_SPACE_CREATE_INFO;
+    space_info.referenceSpaceType = XR_REFERENCE_SPACE_TYPE_STAGE;
+    space_info.poseInReferenceSpace.orientation.w = 1.0f;
+    XrSpace stage = XR_NULL_HANDLE;
+    xr_check(instance, xrCreateReferenceSpace(session, &space_info, &stage),
+             "xrCreateReferenceSpace(STAGE)");
+    stage_ = XrHandle<XrSpace>(stage, xrDestroySpace);
+
+    trackers_.emplace(instance, session);
+    collider_functions_ = ColliderFunctions::load(instance);
+}
+
+bool XrApp::poll_events() {
+    const XrInstance instance = instance_.get();
+    for (;;) {
+        XrEventDataBuffer event{};
+        event.type = XR_TYPE_EVENT_DATA_BUFFER;
+        const XrResult result = xrPollEvent(instance, &event);
+        xr_check(instance, result, "xrPollEvent");
+        if (result == XR_EVENT_UNAVAILABLE) return true;
+        if (event.type == XR_TYPE_EVENT_DATA_INSTANCE_LOSS_PENDING) return false;
+        if (event.type != XR_TYPE_EVENT_DATA_SESSION_STATE_CHANGED) continue;
+        switch (reinterpret_cast<const XrEventDataSessionStateChanged&>(event).state) {
+            case XR_SESSION_STATE_READY: {
+                XrSessionBeginInfo begin{};
+                begin.type = XR_TYPE_SESSION_BEGIN_INFO;
+                begin.primaryViewConfigurationType = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
+                xr_check(instance, xrBeginSession(session_.get(), &begin), "xrBeginSession");
+                running_ = true;
+                break;
+            }
+            case XR_SESSION_STATE_STOPPING:
+                xr_check(instance, xrEndSession(session_.get()), "xrEndSession");
+                running_ = false;
+                break;
+            case XR_SESSION_STATE_EXITING:
+            case XR_SESSION_STATE_LOSS_PENDING:
+                return false;
+            default:
+                break;
+        }
+    }
+}
+
+void XrApp::play_frame(int frame, XrTime time, RunObserver& observer) {
+    if (!colliders_) {
+        colliders_.emplace(scene_, collider_functions_, instance_.get(), session_.get(),
+                           stage_.get(), time);
+    }
+    const double t = frame_time_s(frame);
+    // Before the hands: locating them steps the physics, which must see this frame's targets.
+    colliders_->follow_paths(time, t);
+    std::array<LocatedHand, 2> hands;
+    const double step_us = trackers_->locate(stage_.get(), time, hands);
+    observer.add_frame(t, step_us, hands, colliders_->locate(time));
+}
+
+RunResult XrApp::run() {
+    const XrInstance instance = instance_.get();
+    const XrSession session = session_.get();
+    // As many frames as the physics-only runner plays (physics/scene_run.cpp).
+    const int frames = static_cast<int>(std::ceil(scene_.duration_s * kFrameRateHz - 1e-9));
+    RunObserver observer(scene_);
+    int frame = 0;
+    bool exit_requested = false;
+    // Since when no scene frame was played: before the session runs, and after the last.
+    auto idle_since = std::chrono::steady_clock::now();
+    while (poll_events()) {
+        const bool playing = running_ && frame < frames;
+        if (!playing && std::chrono::steady_clock::now() - idle_since > kStateChangeTimeout) {
+            throw std::runtime_error(frame == 0 ? "the runtime never started the session"
+                                                : "the runtime never ended the session");
+        }
+        if (!running_) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+            continue;
+        }
+        // Every frame is waited, begun and ended, also those after the scene while the
+        // session winds down, as the frame loop must run until STOPPING.
+        XrFrameWaitInfo wait{};
+        wait.type = XR_TYPE_FRAME_WAIT_INFO;
+        XrFrameState state{};
+        state.type = XR_TYPE_FRAME_STATE;
+        xr_check(instance, xrWaitFrame(session, &wait, &state), "xrWaitFrame");
+        XrFrameBeginInfo begin{};
+        begin.type = XR_TYPE_FRAME_BEGIN_INFO;
+        xr_check(instance, xrBeginFrame(session, &begin), "xrBeginFrame");
+        if (playing) {
+            play_frame(++frame, state.predictedDisplayTime, observer);
+            idle_since = std::chrono::steady_clock::now();
+        }
+        XrFrameEndInfo end{};
+        end.type = XR_TYPE_FRAME_END_INFO;
+        end.displayTime = state.predictedDisplayTime;
+        end.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
+        xr_check(instance, xrEndFrame(session, &end), "xrEndFrame");
+        if (frame == frames && !exit_requested) {
+            xr_check(instance, xrRequestExitSession(session), "xrRequestExitSession");
+            exit_requested = true;
+        }
+    }
+    return observer.result();
+}
+
+}  // namespace physhand::sample
