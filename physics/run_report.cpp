@@ -27,6 +27,8 @@ nlohmann::json to_json(const RunResult& r) {
                       {"orientation", {q.x(), q.y(), q.z(), q.w()}}};
     }
     const MetricsSummary& m = r.metrics;
+    // An app sees no contact distances through the API: the layer path cannot measure it.
+    const bool through_layer = r.path == "layer";
     return {
         {"scene", r.scene},
         {"path", r.path},
@@ -36,7 +38,8 @@ nlohmann::json to_json(const RunResult& r) {
         {"predicates", predicates},
         {"tracking_error_rms_mm", m.tracking_error_rms_mm},
         {"tracking_error_p99_mm", m.tracking_error_p99_mm},
-        {"max_penetration_mm", m.max_penetration_mm},
+        {"max_penetration_mm",
+         through_layer ? nlohmann::json() : nlohmann::json(m.max_penetration_mm)},
         {"step_us_median", m.step_us_median},
         {"step_us_p99", m.step_us_p99},
         {"jitter_mm", m.jitter_mm},
@@ -53,13 +56,16 @@ nlohmann::json to_json(const RunResult& r) {
 
 std::string summary_line(const RunResult& r) {
     char buf[320];
-    std::snprintf(buf, sizeof buf,
-                  "%-13s %-4s drive=%s/%d  error %.2f mm rms  penetration %.2f mm  step %.0f us "
-                  "median  nonfinite %d",
-                  r.scene.c_str(), r.success ? "OK" : "FAIL", r.drive.c_str(), r.substeps,
-                  r.metrics.tracking_error_rms_mm, r.metrics.max_penetration_mm,
-                  r.metrics.step_us_median, r.metrics.nonfinite_count);
+    std::snprintf(
+        buf, sizeof buf,
+        "%-13s %-4s %-7s drive=%s/%d  error %.2f mm rms  step %.0f us median  nonfinite %d",
+        r.scene.c_str(), r.success ? "OK" : "FAIL", r.path.c_str(), r.drive.c_str(), r.substeps,
+        r.metrics.tracking_error_rms_mm, r.metrics.step_us_median, r.metrics.nonfinite_count);
     std::string line = buf;
+    if (r.path != "layer") {
+        std::snprintf(buf, sizeof buf, "  penetration %.2f mm", r.metrics.max_penetration_mm);
+        line += buf;
+    }
     for (const PredicateResult& p : r.predicates) {
         if (p.slip_mm) {
             std::snprintf(buf, sizeof buf, "  slip %.2f mm", *p.slip_mm);
