@@ -25,25 +25,25 @@ std::atomic<std::uint64_t> collider_count{0};
 // XR_ERROR_VALIDATION_FAILURE.
 XrResult to_collider(const XrPhysicalColliderCreateInfoPHYSHAND& info, Collider& collider) {
     Shape& shape = collider.shape;
-    switch (info.shape) {
-        case XR_PHYSICAL_COLLIDER_SHAPE_BOX_PHYSHAND:
+    switch (raw_enum(info.shape)) {
+        case raw(XR_PHYSICAL_COLLIDER_SHAPE_BOX_PHYSHAND):
             shape.kind = ShapeKind::Box;
             shape.half_extents = to_vec3(info.halfExtents);
             break;
-        case XR_PHYSICAL_COLLIDER_SHAPE_SPHERE_PHYSHAND:
+        case raw(XR_PHYSICAL_COLLIDER_SHAPE_SPHERE_PHYSHAND):
             shape.kind = ShapeKind::Sphere;
             shape.radius = info.radius;
             break;
-        case XR_PHYSICAL_COLLIDER_SHAPE_CAPSULE_PHYSHAND:
-        case XR_PHYSICAL_COLLIDER_SHAPE_CYLINDER_PHYSHAND:
+        case raw(XR_PHYSICAL_COLLIDER_SHAPE_CAPSULE_PHYSHAND):
+        case raw(XR_PHYSICAL_COLLIDER_SHAPE_CYLINDER_PHYSHAND):
             shape.kind = info.shape == XR_PHYSICAL_COLLIDER_SHAPE_CAPSULE_PHYSHAND
                              ? ShapeKind::Capsule
                              : ShapeKind::Cylinder;
             shape.radius = info.radius;
             shape.half_height = info.halfHeight;
             break;
-        case XR_PHYSICAL_COLLIDER_SHAPE_CONVEX_PHYSHAND:
-        case XR_PHYSICAL_COLLIDER_SHAPE_MESH_PHYSHAND:
+        case raw(XR_PHYSICAL_COLLIDER_SHAPE_CONVEX_PHYSHAND):
+        case raw(XR_PHYSICAL_COLLIDER_SHAPE_MESH_PHYSHAND):
             shape.kind = info.shape == XR_PHYSICAL_COLLIDER_SHAPE_CONVEX_PHYSHAND
                              ? ShapeKind::Convex
                              : ShapeKind::Mesh;
@@ -66,7 +66,7 @@ XrResult to_collider(const XrPhysicalColliderCreateInfoPHYSHAND& info, Collider&
                 }
             }
             break;
-        case XR_PHYSICAL_COLLIDER_SHAPE_PLANE_PHYSHAND: {
+        case raw(XR_PHYSICAL_COLLIDER_SHAPE_PLANE_PHYSHAND): {
             shape.kind = ShapeKind::Plane;
             shape.normal = to_vec3(info.planeNormal);
             shape.offset = info.planeOffset;
@@ -81,14 +81,14 @@ XrResult to_collider(const XrPhysicalColliderCreateInfoPHYSHAND& info, Collider&
         default:
             return XR_ERROR_VALIDATION_FAILURE;
     }
-    switch (info.motion) {
-        case XR_PHYSICAL_COLLIDER_MOTION_STATIC_PHYSHAND:
+    switch (raw_enum(info.motion)) {
+        case raw(XR_PHYSICAL_COLLIDER_MOTION_STATIC_PHYSHAND):
             collider.motion = Motion::Static;
             break;
-        case XR_PHYSICAL_COLLIDER_MOTION_KINEMATIC_PHYSHAND:
+        case raw(XR_PHYSICAL_COLLIDER_MOTION_KINEMATIC_PHYSHAND):
             collider.motion = Motion::Kinematic;
             break;
-        case XR_PHYSICAL_COLLIDER_MOTION_DYNAMIC_PHYSHAND:
+        case raw(XR_PHYSICAL_COLLIDER_MOTION_DYNAMIC_PHYSHAND):
             collider.motion = Motion::Dynamic;
             break;
         default:

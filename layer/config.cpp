@@ -129,7 +129,14 @@ std::optional<DriveSettings> make_drive(std::string_view name, const DriveOverri
 }
 
 Config parse_config(const std::string& json_text, const std::filesystem::path& base_dir) {
-    const json root = json::parse(json_text);
+    json root;
+    try {
+        root = json::parse(json_text);
+    } catch (const json::exception& e) {
+        // nlohmann's exceptions (a syntax error, a number out of range) are not the
+        // std::runtime_error callers expect.
+        throw std::runtime_error(std::string("invalid JSON: ") + e.what());
+    }
     if (!root.is_object()) throw std::runtime_error("expected a JSON object");
     Config config;
     for (const auto& [key, value] : root.items()) {

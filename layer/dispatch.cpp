@@ -17,6 +17,7 @@ enum class Scope {
     Always,     // bookkeeping the layer needs even when the config turned it off
     Enabled,    // the layer is on and the chain below provides the function
     Extension,  // the layer is on and the app enabled XR_PHYSHAND_physical_hands
+    Overlay,    // the layer and its overlay are on
 };
 
 struct Intercept {
@@ -36,6 +37,7 @@ const Intercept* find_intercept(const char* name) {
         {"xrDestroyInstance", to_void(&DestroyInstance), Scope::Always},
         {"xrCreateSession", to_void(&CreateSession), Scope::Enabled},
         {"xrDestroySession", to_void(&DestroySession), Scope::Enabled},
+        {"xrEndFrame", to_void(&EndFrame), Scope::Overlay},
         {"xrCreateHandTrackerEXT", to_void(&CreateHandTrackerEXT), Scope::Enabled},
         {"xrDestroyHandTrackerEXT", to_void(&DestroyHandTrackerEXT), Scope::Enabled},
         {"xrLocateHandJointsEXT", to_void(&LocateHandJointsEXT), Scope::Enabled},
@@ -77,6 +79,15 @@ NextDispatch make_next_dispatch(XrInstance instance, PFN_xrGetInstanceProcAddr n
     required(next.CreateReferenceSpace, "xrCreateReferenceSpace");
     required(next.DestroySpace, "xrDestroySpace");
     required(next.LocateSpace, "xrLocateSpace");
+    required(next.GetSystemProperties, "xrGetSystemProperties");
+    required(next.EndFrame, "xrEndFrame");
+    required(next.EnumerateSwapchainFormats, "xrEnumerateSwapchainFormats");
+    required(next.CreateSwapchain, "xrCreateSwapchain");
+    required(next.DestroySwapchain, "xrDestroySwapchain");
+    required(next.EnumerateSwapchainImages, "xrEnumerateSwapchainImages");
+    required(next.AcquireSwapchainImage, "xrAcquireSwapchainImage");
+    required(next.WaitSwapchainImage, "xrWaitSwapchainImage");
+    required(next.ReleaseSwapchainImage, "xrReleaseSwapchainImage");
     next.CreateHandTrackerEXT =
         next_function<PFN_xrCreateHandTrackerEXT>(instance, next_gipa, "xrCreateHandTrackerEXT");
     next.DestroyHandTrackerEXT =
@@ -97,7 +108,8 @@ XRAPI_ATTR XrResult XRAPI_CALL GetInstanceProcAddr(XrInstance instance, const ch
         }
         const Intercept* intercept = find_intercept(name);
         // Everything the layer does not need is the next layer's own pointer: zero overhead.
-        if (intercept == nullptr || (!state->config.enabled && intercept->scope != Scope::Always)) {
+        if (intercept == nullptr || (!state->config.enabled && intercept->scope != Scope::Always) ||
+            (intercept->scope == Scope::Overlay && !state->config.overlay)) {
             return state->next.GetInstanceProcAddr(instance, name, function);
         }
         if (intercept->scope == Scope::Extension) {

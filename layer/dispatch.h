@@ -20,6 +20,15 @@ struct NextDispatch {
     PFN_xrCreateReferenceSpace CreateReferenceSpace = nullptr;
     PFN_xrDestroySpace DestroySpace = nullptr;
     PFN_xrLocateSpace LocateSpace = nullptr;
+    PFN_xrGetSystemProperties GetSystemProperties = nullptr;
+    PFN_xrEndFrame EndFrame = nullptr;
+    PFN_xrEnumerateSwapchainFormats EnumerateSwapchainFormats = nullptr;
+    PFN_xrCreateSwapchain CreateSwapchain = nullptr;
+    PFN_xrDestroySwapchain DestroySwapchain = nullptr;
+    PFN_xrEnumerateSwapchainImages EnumerateSwapchainImages = nullptr;
+    PFN_xrAcquireSwapchainImage AcquireSwapchainImage = nullptr;
+    PFN_xrWaitSwapchainImage WaitSwapchainImage = nullptr;
+    PFN_xrReleaseSwapchainImage ReleaseSwapchainImage = nullptr;
     PFN_xrCreateHandTrackerEXT CreateHandTrackerEXT = nullptr;
     PFN_xrDestroyHandTrackerEXT DestroyHandTrackerEXT = nullptr;
     PFN_xrLocateHandJointsEXT LocateHandJointsEXT = nullptr;
@@ -40,6 +49,9 @@ XRAPI_ATTR XrResult XRAPI_CALL CreateSession(XrInstance instance,
                                              const XrSessionCreateInfo* createInfo,
                                              XrSession* session);
 XRAPI_ATTR XrResult XRAPI_CALL DestroySession(XrSession session);
+
+// frame_submit.cpp
+XRAPI_ATTR XrResult XRAPI_CALL EndFrame(XrSession session, const XrFrameEndInfo* frameEndInfo);
 
 // hand_tracking.cpp
 XRAPI_ATTR XrResult XRAPI_CALL CreateHandTrackerEXT(XrSession session,

@@ -10,6 +10,7 @@
 #include "dispatch.h"
 #include "layer_log.h"
 #include "sessions.h"
+#include "xr_util.h"
 
 // xrSetHandDrivePHYSHAND: the app picks the hand drive, as the config file's "drive" does.
 namespace physhand::layer {
@@ -32,16 +33,16 @@ XRAPI_ATTR XrResult XRAPI_CALL SetHandDrivePHYSHAND(XrSession session,
             return XR_ERROR_VALIDATION_FAILURE;
         }
         std::string_view name;
-        switch (driveInfo->drive) {
-            case XR_HAND_DRIVE_KIND_DEFAULT_PHYSHAND:
+        switch (raw_enum(driveInfo->drive)) {
+            case raw(XR_HAND_DRIVE_KIND_DEFAULT_PHYSHAND):
                 break;  // "" is the default drive
-            case XR_HAND_DRIVE_KIND_PAPER_PHYSHAND:
+            case raw(XR_HAND_DRIVE_KIND_PAPER_PHYSHAND):
                 name = "paper";
                 break;
-            case XR_HAND_DRIVE_KIND_IMPLICIT_PHYSHAND:
+            case raw(XR_HAND_DRIVE_KIND_IMPLICIT_PHYSHAND):
                 name = "implicit";
                 break;
-            case XR_HAND_DRIVE_KIND_BONES_PHYSHAND:
+            case raw(XR_HAND_DRIVE_KIND_BONES_PHYSHAND):
                 name = "bones";
                 break;
             default:

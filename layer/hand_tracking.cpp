@@ -192,7 +192,7 @@ void SessionState::advance(XrTime time) {
     // Seconds since the session's first located time: XrTime counts nanoseconds from an
     // arbitrary origin, too large for the simulation's double seconds to stay exact.
     const double t = clock_seconds(time - *epoch);
-    std::array<HandPose, 2> ghosts;
+    ghosts = {};
     for (const HandSide side : kHandSides) {
         const std::vector<XrHandTrackerEXT>& side_trackers = trackers[side_index(side)];
         if (side_trackers.empty()) continue;  // never tracked: stays inactive

@@ -2,9 +2,12 @@
 
 #include <atomic>
 #include <shared_mutex>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "layer_log.h"
+#include "overlay_session.h"
 #include "recording.h"
 #include "xr_util.h"
 
@@ -69,6 +72,30 @@ XrSpace create_frame(const NextDispatch& next, XrSession session, XrReferenceSpa
         }
     }
     return XR_NULL_HANDLE;
+}
+
+// The overlay needs the app's Vulkan objects and room for one more composition layer.
+// Without them the session runs unchanged, without the overlay.
+void set_up_overlay(SessionState& state, const XrSessionCreateInfo& info) {
+    try {
+        state.vulkan = capture_vulkan_binding(info);
+        if (!state.vulkan) {
+            log_once("xrCreateSession: not a Vulkan session; the hands are not drawn");
+            return;
+        }
+        XrSystemProperties properties{};
+        properties.type = XR_TYPE_SYSTEM_PROPERTIES;
+        const XrResult result = state.instance->next.GetSystemProperties(
+            state.instance->instance, info.systemId, &properties);
+        if (XR_FAILED(result)) {
+            throw std::runtime_error("xrGetSystemProperties failed with XrResult " +
+                                     std::to_string(result));
+        }
+        state.max_layer_count = properties.graphicsProperties.maxLayerCount;
+    } catch (const std::exception& e) {
+        state.vulkan.reset();
+        log_failure("xrCreateSession (the hands are not drawn)", e.what());
+    }
 }
 
 // A session the layer cannot simulate still works: its hands pass through unchanged.
@@ -225,7 +252,9 @@ XRAPI_ATTR XrResult XRAPI_CALL CreateSession(XrInstance instance,
         const XrResult result = state->next.CreateSession(instance, createInfo, session);
         if (XR_FAILED(result)) return result;
         try {
-            add_session(make_session_state(state, *session));
+            std::shared_ptr<SessionState> session_state = make_session_state(state, *session);
+            if (state->config.overlay) set_up_overlay(*session_state, *createInfo);
+            add_session(std::move(session_state));
         } catch (...) {
             // Without its state the session would be unusable through the layer.
             state->next.DestroySession(*session);
@@ -246,6 +275,8 @@ XRAPI_ATTR XrResult XRAPI_CALL DestroySession(XrSession session) {
             if (state->frame != XR_NULL_HANDLE) state->instance->next.DestroySpace(state->frame);
             state->frame = XR_NULL_HANDLE;
             // Freed now, not when the last concurrent caller lets go of the state.
+            // Before the session: the overlay's swapchain belongs to it.
+            state->overlay.reset();
             state->simulation.reset();
             state->colliders.clear();
             state->recorder.reset();

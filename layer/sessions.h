@@ -13,11 +13,13 @@
 #include "config.h"
 #include "dispatch.h"
 #include "simulation.h"
+#include "vulkan_binding.h"
 
 // Per-instance and per-session state, the registry that finds it from a handle, and the
 // conversion between the app's spaces and the layer's own frame.
 namespace physhand::layer {
 
+class OverlaySession;
 class Recorder;
 
 struct InstanceState {
@@ -56,6 +58,14 @@ class SessionState {
     std::unique_ptr<Recorder> recorder;  // null unless PHYSHAND_RECORD is set
     std::optional<XrTime> epoch;         // the XrTime of simulation time 0
     XrTime advanced_to = 0;              // the latest time the simulation was advanced to
+    std::array<HandPose, 2> ghosts;      // the runtime's hands at advanced_to, in the frame
+
+    // The app's Vulkan objects; empty for other graphics APIs, headless sessions, with the
+    // overlay turned off in the config or after it failed: then there is no overlay.
+    std::optional<VulkanBinding> vulkan;
+    uint32_t max_layer_count = 0;             // the system's, for the overlay's extra layer
+    std::unique_ptr<OverlaySession> overlay;  // created with the first frame it draws
+    std::vector<const XrCompositionLayerBaseHeader*> submitted_layers;  // the app's + overlay
 
     // Where `space` is in the layer's frame at `time`. XR_ERROR_POSE_INVALID when the
     // runtime cannot locate it then; XR_ERROR_HANDLE_INVALID for a null space,

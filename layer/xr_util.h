@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <type_traits>
 
 #include "pose.h"
@@ -59,6 +60,20 @@ inline XrResult check_pose(const XrPosef& p) {
     const double norm2 =
         double(q.x) * q.x + double(q.y) * q.y + double(q.z) * q.z + double(q.w) * q.w;
     return std::abs(norm2 - 1.0) <= 1e-2 ? XR_SUCCESS : XR_ERROR_POSE_INVALID;
+}
+
+// An enum field as the app wrote it. C lets any int through, and loading a value outside a
+// C++ enum's range is undefined behaviour (UBSan -fsanitize=enum aborts on it), so an app's
+// enums are read as their underlying integer before they are compared.
+template <typename Enum>
+std::underlying_type_t<Enum> raw_enum(const Enum& field) {
+    std::underlying_type_t<Enum> value;
+    std::memcpy(&value, &field, sizeof(value));
+    return value;
+}
+template <typename Enum>
+constexpr std::underlying_type_t<Enum> raw(Enum value) {
+    return static_cast<std::underlying_type_t<Enum>>(value);
 }
 
 // The first structure of `type` in an output chain, or null.

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -23,8 +24,23 @@ constexpr btScalar kMargin = 0.001f;
     throw std::invalid_argument("collider \"" + c.id + "\": " + what);
 }
 
-void require_positive(const Collider& c, double v, const char* field) {
-    if (!std::isfinite(v) || v <= 0.0) fail(c, std::string(field) + " must be finite and > 0");
+// Bullet simulates in float: past these bounds a body's inverse mass or inertia, or its
+// weight, overflows, and its first contact turns its state into NaN (found by fuzzing the
+// extension, tests/fuzz).
+constexpr double kMinSize = 1e-4, kMaxSize = 1e4;  // m
+constexpr double kMinMass = 1e-6, kMaxMass = 1e6;  // kg
+
+void require_within(const Collider& c, double v, double lo, double hi, const char* field,
+                    const char* unit) {
+    if (!(v >= lo && v <= hi)) {
+        std::ostringstream what;
+        what << field << " must be within [" << lo << ", " << hi << "] " << unit;
+        fail(c, what.str());
+    }
+}
+
+void require_size(const Collider& c, double v, const char* field) {
+    require_within(c, v, kMinSize, kMaxSize, field, "m");
 }
 
 }  // namespace
@@ -38,20 +54,18 @@ void validate_collider(const Collider& c) {
     const Shape& s = c.shape;
     switch (s.kind) {
         case ShapeKind::Box:
-            for (int i = 0; i < 3; ++i) require_positive(c, s.half_extents[i], "half_extents");
+            for (int i = 0; i < 3; ++i) require_size(c, s.half_extents[i], "half_extents");
             break;
         case ShapeKind::Sphere:
-            require_positive(c, s.radius, "radius");
+            require_size(c, s.radius, "radius");
             break;
         case ShapeKind::Capsule:
-            require_positive(c, s.radius, "radius");
-            if (!std::isfinite(s.half_height) || s.half_height < 0.0) {
-                fail(c, "half_height must be finite and >= 0");
-            }
+            require_size(c, s.radius, "radius");
+            require_within(c, s.half_height, 0.0, kMaxSize, "half_height", "m");
             break;
         case ShapeKind::Cylinder:
-            require_positive(c, s.radius, "radius");
-            require_positive(c, s.half_height, "half_height");
+            require_size(c, s.radius, "radius");
+            require_size(c, s.half_height, "half_height");
             break;
         case ShapeKind::Convex:
             if (s.vertices.size() < 4) fail(c, "a convex hull needs at least 4 vertices");
@@ -81,7 +95,7 @@ void validate_collider(const Collider& c) {
         fail(c, "mesh and plane colliders must be static");
     }
     if (c.motion == Motion::Dynamic) {
-        require_positive(c, c.mass, "mass");
+        require_within(c, c.mass, kMinMass, kMaxMass, "mass", "kg");
     } else if (c.mass != 0.0) {
         fail(c, "mass is only for dynamic colliders");
     }

@@ -10,9 +10,12 @@ namespace {
 // Torque limit = force limit times a finger-length lever.
 constexpr double kTorqueLever = 0.03;
 
-Vec3 clamp_norm(const Vec3& v, double limit) {
-    if (limit <= 0.0) return v;
+// `v` scaled down to the drive's force limit (times `lever` for a torque), or kMaxDriveForce.
+Vec3 clamp_norm(const Vec3& v, double force_limit, double lever = 1.0) {
+    const double limit =
+        (force_limit > 0.0 ? std::min(force_limit, kMaxDriveForce) : kMaxDriveForce) * lever;
     const double n = v.norm();
+    if (!std::isfinite(n)) return Vec3::Zero();  // overflowed gains: no usable direction
     return n > limit ? v * (limit / n) : v;
 }
 
@@ -76,7 +79,7 @@ Vec3 drive_torque(const DriveSettings& drive, double mass, const Eigen::Matrix3d
              angular_velocity) /
             h;
     }
-    return clamp_norm(inertia_world * acceleration, drive.force_limit * kTorqueLever);
+    return clamp_norm(inertia_world * acceleration, drive.force_limit, kTorqueLever);
 }
 
 }  // namespace physhand

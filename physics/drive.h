@@ -28,9 +28,15 @@ struct DriveSettings {
     // Orientation is driven with the same natural frequency and damping ratio as position
     // (gains scaled by inertia/mass), only for bodies whose orientation matters.
     bool drive_orientation = false;
-    double force_limit = 0.0;  // N per body (torque: scaled likewise); 0: unlimited
-    int substeps = 4;          // per 90 Hz frame
+    // N per body (torque: scaled likewise); 0: none of its own. kMaxDriveForce caps it.
+    double force_limit = 0.0;
+    int substeps = 4;  // per 90 Hz frame
 };
+
+// No drive force exceeds this, whatever the limit: past it, an explicit drive's overshoot
+// on a body of a few grams overflows Bullet's float state into NaN (found by fuzzing the
+// extension, tests/fuzz). A real hand pushes with a hundredth of it.
+inline constexpr double kMaxDriveForce = 1e4;  // N
 
 // The drives the project ships; the first is the default.
 const std::vector<DriveSettings>& builtin_drives();

@@ -54,6 +54,8 @@ class PhysicalHand {
     // World bounds of all bodies.
     void bounds(Vec3& lo, Vec3& hi) const;
     const DriveSettings& drive_settings() const { return drive_; }
+    // Gains, limits and law may change; the body model may not (build a new hand for that).
+    void set_drive(const DriveSettings& drive) { drive_ = drive; }
 
   private:
     struct Body;

@@ -96,9 +96,20 @@ void Simulation::set_drive(const DriveSettings& drive) {
     tick_ = static_cast<std::int64_t>(std::floor(
         static_cast<double>(tick_) * old_h * settings_.frame_rate_hz * drive.substeps + 0.5));
     for (auto& slot : hands_) {
-        if (slot->body) slot->body->detach(*world_);
-        slot->body.reset();
-        slot->simulated = false;
+        if (!slot->body) continue;
+        if (slot->body->drive_settings().body_model == drive.body_model) {
+            slot->body->set_drive(drive);
+            continue;
+        }
+        // A new body layout starts where the physical hand is, not at the ghost: a hand
+        // pressing into a desk would otherwise be rebuilt inside it.
+        const bool was_simulated = slot->simulated;
+        slot->body->detach(*world_);
+        slot->body = std::make_unique<PhysicalHand>(slot->side, drive, slot->ghost);
+        if (!was_simulated) continue;
+        const HandPose& here = slot->state.joints;
+        slot->body->seat(here, here, 1.0 / settings_.frame_rate_hz);
+        slot->body->attach(*world_);
     }
 }
 

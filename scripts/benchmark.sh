@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates BENCHMARKS.md and bench/ (CSV + one SVG per scene): every drive over
-# 1..16 substeps on the measurement scenes, and scaling with the number of colliders.
+# 1..16 substeps on the measurement scenes, scaling with the number of colliders, and the
+# layer's overhead per call (bench/overhead.json).
 # Takes several minutes; not part of the tests.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -9,14 +10,22 @@ build=$("$root/scripts/build.sh" | tail -n 1)
 out=$(mktemp -d)
 "$build/tests/physhand-sweep" --out "$out" --repeat "${REPEAT:-3}"
 "$build/tests/physhand-scaling" --out "$out" --repeat "${REPEAT:-3}"
+"$build/tests/physhand-overhead" --benchmark_repetitions="${REPEAT:-3}" \
+    --benchmark_out="$out/overhead.json" --benchmark_out_format=json --summary "$out/overhead.md"
 mkdir -p "$root/bench"
-cp "$out"/*.csv "$out"/*.svg "$root/bench/"
+cp "$out"/*.csv "$out"/*.svg "$out/overhead.json" "$root/bench/"
 {
     cat "$root/bench/intro.md"
     echo
     echo "Measured $(date -u +%Y-%m-%d) on $(nproc) cores ($(lscpu | sed -n 's/^Model name: *//p' | head -1)), \`REPEAT=${REPEAT:-3} scripts/benchmark.sh\`."
     echo
     cat "$out/sweep.md" "$out/scaling.md"
+    echo
+    echo "## Overhead through the layer"
+    echo
+    echo "overhead_ns (shared/METRICS.md): the median CPU time of one call through the loader to the simulated runtime with the layer, minus the same without it (\`physhand-overhead\`, one run, ${REPEAT:-3} repetitions). Each hand locate is one frame later than the last, so the layer steps its simulation on every call it simulates."
+    echo
+    cat "$out/overhead.md"
 } > "$root/BENCHMARKS.md"
 rm -rf "$out"
 echo "wrote BENCHMARKS.md and bench/"

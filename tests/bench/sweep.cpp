@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_options.h"
 #include "run_metrics.h"
 #include "scene.h"
 #include "scene_run.h"
@@ -97,23 +98,11 @@ std::string fmt(double v, int digits = 3) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    fs::path out = "bench-out";
-    fs::path scenes_dir = PHYSHAND_SCENES_DIR;
-    int repeat = 3;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "--out" && i + 1 < argc)
-            out = argv[++i];
-        else if (a == "--repeat" && i + 1 < argc)
-            repeat = std::max(1, std::atoi(argv[++i]));
-        else if (a == "--scenes" && i + 1 < argc)
-            scenes_dir = argv[++i];
-        else {
-            std::cerr << "usage: physhand-sweep [--out DIR] [--repeat N] [--scenes DIR]\n";
-            return 2;
-        }
-    }
-    fs::create_directories(out);
+    const auto options = bench::parse_options(argc, argv, "physhand-sweep", PHYSHAND_SCENES_DIR);
+    if (!options) return 2;
+    const fs::path& out = options->out;
+    const fs::path& scenes_dir = options->scenes_dir;
+    const int repeat = options->repeat;
     std::ofstream csv(out / "sweep.csv");
     csv << "scene,drive,substeps,step_us_median,step_us_p99,tracking_error_rms_mm,tracking_error_"
            "p99_mm,"

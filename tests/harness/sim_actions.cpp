@@ -43,6 +43,17 @@ bool is_valid_action_type(XrActionType type) {
     }
 }
 
+// An action of a set attached to the session, of the given type (any when nullopt).
+XrResult check_action(Runtime& rt, XrSession session, XrAction handle,
+                      std::optional<XrActionType> type = std::nullopt) {
+    const ActionData* action = rt.actions.find(handle);
+    if (action == nullptr) return XR_ERROR_HANDLE_INVALID;
+    if (!is_attached_to(*rt.action_sets.find(action->action_set), session)) {
+        return XR_ERROR_ACTIONSET_NOT_ATTACHED;
+    }
+    return type && action->type != *type ? XR_ERROR_ACTION_TYPE_MISMATCH : XR_SUCCESS;
+}
+
 // The shared body of xrGetActionState*: validates, then reports an inactive action.
 template <typename State>
 XrResult get_action_state(XrSession session, const XrActionStateGetInfo* getInfo, State* state,
@@ -52,17 +63,29 @@ XrResult get_action_state(XrSession session, const XrActionStateGetInfo* getInfo
         if (!has_type(getInfo, XR_TYPE_ACTION_STATE_GET_INFO) || !has_type(state, state_type)) {
             return XR_ERROR_VALIDATION_FAILURE;
         }
-        const ActionData* action = rt.actions.find(getInfo->action);
-        if (action == nullptr) return XR_ERROR_HANDLE_INVALID;
-        if (!is_attached_to(*rt.action_sets.find(action->action_set), session)) {
-            return XR_ERROR_ACTIONSET_NOT_ATTACHED;
+        if (XrResult result = check_action(rt, session, getInfo->action, action_type);
+            XR_FAILED(result)) {
+            return result;
         }
-        if (action->type != action_type) return XR_ERROR_ACTION_TYPE_MISMATCH;
         State inactive{};
         inactive.type = state_type;
         inactive.next = state->next;
         *state = inactive;
         return XR_SUCCESS;
+    });
+}
+
+// The shared body of xrApplyHapticFeedback and xrStopHapticFeedback: with no controllers
+// there is nothing to vibrate.
+XrResult haptic(XrSession session, const XrHapticActionInfo* hapticActionInfo,
+                const XrHapticBaseHeader* hapticFeedback, bool apply) {
+    return guarded([&](Runtime& rt) {
+        if (rt.sessions.find(session) == nullptr) return XR_ERROR_HANDLE_INVALID;
+        if (!has_type(hapticActionInfo, XR_TYPE_HAPTIC_ACTION_INFO) ||
+            (apply && !has_type(hapticFeedback, XR_TYPE_HAPTIC_VIBRATION))) {
+            return XR_ERROR_VALIDATION_FAILURE;
+        }
+        return check_action(rt, session, hapticActionInfo->action, XR_ACTION_TYPE_VIBRATION_OUTPUT);
     });
 }
 
@@ -247,6 +270,71 @@ XrResult xrCreateActionSpace(XrSession session, const XrActionSpaceCreateInfo* c
         *space = rt.spaces.add({session, std::nullopt, from_xr(createInfo->poseInActionSpace)});
         return XR_SUCCESS;
     });
+}
+
+XrResult xrGetCurrentInteractionProfile(XrSession session, XrPath topLevelUserPath,
+                                        XrInteractionProfileState* interactionProfile) {
+    return guarded([&](Runtime& rt) {
+        const SessionData* data = rt.sessions.find(session);
+        if (data == nullptr) return XR_ERROR_HANDLE_INVALID;
+        if (!has_type(interactionProfile, XR_TYPE_INTERACTION_PROFILE_STATE)) {
+            return XR_ERROR_VALIDATION_FAILURE;
+        }
+        if (!path_exists(*rt.instances.find(data->instance), topLevelUserPath)) {
+            return XR_ERROR_PATH_INVALID;
+        }
+        if (!data->actions_attached) return XR_ERROR_ACTIONSET_NOT_ATTACHED;
+        interactionProfile->interactionProfile = XR_NULL_PATH;  // no controller, no profile
+        return XR_SUCCESS;
+    });
+}
+
+XrResult xrEnumerateBoundSourcesForAction(XrSession session,
+                                          const XrBoundSourcesForActionEnumerateInfo* enumerateInfo,
+                                          uint32_t sourceCapacityInput, uint32_t* sourceCountOutput,
+                                          XrPath* sources) {
+    return guarded([&](Runtime& rt) {
+        if (rt.sessions.find(session) == nullptr) return XR_ERROR_HANDLE_INVALID;
+        if (!has_type(enumerateInfo, XR_TYPE_BOUND_SOURCES_FOR_ACTION_ENUMERATE_INFO)) {
+            return XR_ERROR_VALIDATION_FAILURE;
+        }
+        if (XrResult result = check_action(rt, session, enumerateInfo->action); XR_FAILED(result)) {
+            return result;
+        }
+        return fill_array(sourceCapacityInput, sourceCountOutput, sources, 0,
+                          [](XrPath&, uint32_t) { return XR_SUCCESS; });
+    });
+}
+
+// No source is ever bound, so no application has a source path to ask about; any path
+// is named by its own string.
+XrResult xrGetInputSourceLocalizedName(XrSession session,
+                                       const XrInputSourceLocalizedNameGetInfo* getInfo,
+                                       uint32_t bufferCapacityInput, uint32_t* bufferCountOutput,
+                                       char* buffer) {
+    XrInstance instance = XR_NULL_HANDLE;
+    XrResult result = guarded([&](Runtime& rt) {
+        const SessionData* data = rt.sessions.find(session);
+        if (data == nullptr) return XR_ERROR_HANDLE_INVALID;
+        if (!has_type(getInfo, XR_TYPE_INPUT_SOURCE_LOCALIZED_NAME_GET_INFO) ||
+            getInfo->whichComponents == 0) {
+            return XR_ERROR_VALIDATION_FAILURE;
+        }
+        instance = data->instance;
+        return XR_SUCCESS;
+    });
+    if (XR_FAILED(result)) return result;
+    return xrPathToString(instance, getInfo->sourcePath, bufferCapacityInput, bufferCountOutput,
+                          buffer);
+}
+
+XrResult xrApplyHapticFeedback(XrSession session, const XrHapticActionInfo* hapticActionInfo,
+                               const XrHapticBaseHeader* hapticFeedback) {
+    return haptic(session, hapticActionInfo, hapticFeedback, true);
+}
+
+XrResult xrStopHapticFeedback(XrSession session, const XrHapticActionInfo* hapticActionInfo) {
+    return haptic(session, hapticActionInfo, nullptr, false);
 }
 
 }  // namespace physhand::sim

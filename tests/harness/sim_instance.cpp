@@ -1,5 +1,5 @@
-// Instances: extensions, creation (and loading the scene to play), properties, events,
-// enum names.
+// Instances: extensions, creation (and reading the scene to play and the capture settings),
+// properties, events, enum names.
 
 #include <openxr/openxr_reflection.h>
 
@@ -14,12 +14,15 @@
 namespace physhand::sim {
 namespace {
 
-// XR_KHR_vulkan_enable2 joins this list once sessions can carry a Vulkan binding.
 constexpr auto kExtensions = std::to_array<XrExtensionProperties>({
     {XR_TYPE_EXTENSION_PROPERTIES, nullptr, XR_EXT_HAND_TRACKING_EXTENSION_NAME,
      XR_EXT_hand_tracking_SPEC_VERSION},
     {XR_TYPE_EXTENSION_PROPERTIES, nullptr, XR_MND_HEADLESS_EXTENSION_NAME,
      XR_MND_headless_SPEC_VERSION},
+    {XR_TYPE_EXTENSION_PROPERTIES, nullptr, XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME,
+     XR_KHR_vulkan_enable2_SPEC_VERSION},
+    {XR_TYPE_EXTENSION_PROPERTIES, nullptr, XR_KHR_VULKAN_ENABLE_EXTENSION_NAME,
+     XR_KHR_vulkan_enable_SPEC_VERSION},
 });
 
 constexpr const char* kRuntimeName = "physhand simulated runtime";
@@ -104,10 +107,14 @@ XrResult xrCreateInstance(const XrInstanceCreateInfo* createInfo, XrInstance* in
             const char* name = createInfo->enabledExtensionNames[i];
             if (name == nullptr) return XR_ERROR_VALIDATION_FAILURE;
             if (!is_supported_extension(name)) return XR_ERROR_EXTENSION_NOT_PRESENT;
-            data.hand_tracking |= std::string_view(name) == XR_EXT_HAND_TRACKING_EXTENSION_NAME;
-            data.headless |= std::string_view(name) == XR_MND_HEADLESS_EXTENSION_NAME;
+            std::string_view extension = name;
+            data.hand_tracking |= extension == XR_EXT_HAND_TRACKING_EXTENSION_NAME;
+            data.headless |= extension == XR_MND_HEADLESS_EXTENSION_NAME;
+            data.vulkan_enable |= extension == XR_KHR_VULKAN_ENABLE_EXTENSION_NAME;
+            data.vulkan_enable2 |= extension == XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME;
         }
         data.scene = load_played_scene();
+        data.capture = capture_settings();
         *instance = rt.instances.add(std::move(data));
         return XR_SUCCESS;
     });

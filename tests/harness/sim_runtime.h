@@ -9,9 +9,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <deque>
+#include <exception>
+#include <filesystem>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <new>
 #include <optional>
@@ -23,14 +27,16 @@
 #include "frame_clock.h"
 #include "pose.h"
 #include "scene.h"
+#include "sim_vulkan.h"
 #include "tracking.h"
 
 namespace physhand::sim {
 
 inline constexpr XrSystemId kSystemId = 1;
 inline constexpr std::uint32_t kMaxLayerCount = 16;
-inline constexpr std::uint32_t kViewCount = 2;  // PRIMARY_STEREO
-inline constexpr double kEyeHeight = 1.6;       // LOCAL and VIEW origins above the STAGE floor
+inline constexpr std::uint32_t kViewCount = 2;    // PRIMARY_STEREO
+inline constexpr std::uint32_t kViewSize = 1024;  // display pixels per eye, square
+inline constexpr double kEyeHeight = 1.6;         // LOCAL and VIEW origins above the STAGE floor
 
 // Everything the simulation locates is known exactly.
 inline constexpr XrSpaceLocationFlags kLocatedFlags =
@@ -113,9 +119,26 @@ struct StateChange {
     XrTime time;
 };
 
+// What XR_KHR_vulkan_enable(2) told the application, for xrCreateSession to check.
+struct VulkanSystem {
+    bool requirements_queried = false;     // xrGetVulkanGraphicsRequirements(2)KHR was called
+    VkInstance instance = VK_NULL_HANDLE;  // of the latest xrGetVulkanGraphicsDevice(2)KHR
+    VkPhysicalDevice physical_device = VK_NULL_HANDLE;  // what that call answered
+};
+
+// PHYSHAND_SIM_CAPTURE=DIR: composited frames are written there (sim_capture.cpp).
+struct CaptureSettings {
+    std::filesystem::path dir;
+    std::int64_t every;  // write frames whose number is a multiple of this, and the last
+};
+
 struct InstanceData {
-    bool hand_tracking = false;  // XR_EXT_hand_tracking enabled
-    bool headless = false;       // XR_MND_headless enabled
+    bool hand_tracking = false;   // XR_EXT_hand_tracking enabled
+    bool headless = false;        // XR_MND_headless enabled
+    bool vulkan_enable = false;   // XR_KHR_vulkan_enable enabled
+    bool vulkan_enable2 = false;  // XR_KHR_vulkan_enable2 enabled
+    VulkanSystem vulkan;
+    std::optional<CaptureSettings> capture;
     // Empty when there is no usable scene: hands are never active and sessions never end on
     // their own.
     std::optional<PlayedScene> scene;
@@ -131,11 +154,32 @@ struct SessionData {
     // after every change still queued; transitions are planned from the latter.
     XrSessionState state = XR_SESSION_STATE_IDLE;
     XrSessionState queued_state = XR_SESSION_STATE_IDLE;
-    bool running = false;           // between xrBeginSession and xrEndSession
-    bool stop_queued = false;       // the path down to STOPPING is queued
-    bool frame_waited = false;      // an xrWaitFrame not yet followed by xrBeginFrame
-    bool frame_begun = false;       // an xrBeginFrame not yet followed by xrEndFrame
-    bool actions_attached = false;  // xrAttachSessionActionSets succeeded (once only)
+    bool running = false;                   // between xrBeginSession and xrEndSession
+    bool stop_queued = false;               // the path down to STOPPING is queued
+    bool frame_waited = false;              // an xrWaitFrame not yet followed by xrBeginFrame
+    bool frame_begun = false;               // an xrBeginFrame not yet followed by xrEndFrame
+    bool actions_attached = false;          // xrAttachSessionActionSets succeeded (once only)
+    bool last_frame_captured = false;       // the frame ended after the stop was queued
+    std::unique_ptr<VulkanSession> vulkan;  // null for a headless session
+};
+
+struct SwapchainData {
+    XrSession session;
+    VkFormat format;
+    std::uint32_t width;
+    std::uint32_t height;
+    std::uint32_t array_size;
+    bool is_static;  // XR_SWAPCHAIN_CREATE_STATIC_IMAGE_BIT: one image, acquired once
+    // Where the images are between xrWaitSwapchainImage and the next acquire, as
+    // XR_KHR_vulkan_enable promises: the attachment-optimal layout of their aspect.
+    VkImageLayout layout;
+    VkImageAspectFlags aspect;
+    std::unique_ptr<SwapchainImages> images;
+    bool layouts_set = false;                 // images out of UNDEFINED (at the first acquire)
+    std::uint32_t next = 0;                   // the image the next acquire hands out
+    std::deque<std::uint32_t> acquired{};     // acquired and not yet released, oldest first
+    bool waited = false;                      // acquired.front() has been waited for
+    std::optional<std::uint32_t> released{};  // the latest released image: what layers show
 };
 
 struct SpaceData {
@@ -170,6 +214,17 @@ struct Runtime {
     Registry<XrActionSet, ActionSetData> action_sets;
     Registry<XrAction, ActionData> actions;
     Registry<XrHandTrackerEXT, HandTrackerData> hand_trackers;
+    Registry<XrSwapchain, SwapchainData> swapchains;
+
+    // At unload, the Vulkan objects of what an application never destroyed are left alone:
+    // their device, or the Vulkan loader, may be gone already.
+    ~Runtime() {
+        swapchains.for_each([](XrSwapchain, SwapchainData& swapchain) {
+            static_cast<void>(swapchain.images.release());
+        });
+        sessions.for_each(
+            [](XrSession, SessionData& session) { static_cast<void>(session.vulkan.release()); });
+    }
 };
 
 inline Runtime& runtime() {
@@ -187,6 +242,9 @@ XrResult guarded(Body&& body) noexcept {
         return body(rt);
     } catch (const std::bad_alloc&) {
         return XR_ERROR_OUT_OF_MEMORY;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "physhand simulated runtime: %s\n", e.what());
+        return XR_ERROR_RUNTIME_FAILURE;
     } catch (...) {
         return XR_ERROR_RUNTIME_FAILURE;
     }
@@ -268,6 +326,13 @@ inline Pose from_xr(const XrPosef& p) {
     return {Vec3(p.position.x, p.position.y, p.position.z), Quat(q.w, q.x, q.y, q.z).normalized()};
 }
 
+// An 8-bit sRGB-encoded RGBA image, rows top to bottom: one composited view.
+struct Rgba8Image {
+    std::uint32_t width = 0;
+    std::uint32_t height = 0;
+    std::vector<std::uint8_t> pixels;
+};
+
 // sim_instance.cpp
 const char* structure_type_name(XrStructureType type);  // nullptr when unknown
 // sim_paths.cpp
@@ -277,8 +342,25 @@ void destroy_session(Runtime& rt, XrSession session);
 // sim_spaces.cpp
 // Pose of the space's origin in STAGE (the scene frame); nullopt if it does not locate.
 std::optional<Pose> space_in_stage(const SpaceData& space);
+Pose eye_in_stage(std::uint32_t view);  // view 0 is the left eye
+XrFovf eye_fov();
 // sim_actions.cpp
 void destroy_action_set(Runtime& rt, XrActionSet action_set);
+// sim_vulkan.cpp
+// For xrCreateSession: the application's device from its binding, or why it cannot be used.
+XrResult open_vulkan_session(const InstanceData& instance,
+                             const XrGraphicsBindingVulkanKHR& binding,
+                             std::unique_ptr<VulkanSession>* vulkan);
+// sim_compositor.cpp
+// The checks of xrEndFrame on its layers, their spaces and their swapchains.
+XrResult check_layers(Runtime& rt, XrSession session, const XrFrameEndInfo& info);
+// The layers of a checked xrEndFrame composed in order over black, one image per view.
+std::vector<Rgba8Image> compose_layers(Runtime& rt, XrSession session, const XrFrameEndInfo& info);
+// sim_capture.cpp
+// PHYSHAND_SIM_CAPTURE and PHYSHAND_SIM_CAPTURE_EVERY, read at instance creation.
+std::optional<CaptureSettings> capture_settings();
+// Writes the frame of a checked xrEndFrame as PNG when capture is on and its turn has come.
+void capture_frame(Runtime& rt, XrSession session, const XrFrameEndInfo& info);
 
 // ---- entry points, one file per concern --------------------------------------------------
 
@@ -382,6 +464,20 @@ PHYSHAND_SIM_API xrGetActionStatePose(XrSession session, const XrActionStateGetI
                                       XrActionStatePose* state);
 PHYSHAND_SIM_API xrCreateActionSpace(XrSession session, const XrActionSpaceCreateInfo* createInfo,
                                      XrSpace* space);
+PHYSHAND_SIM_API xrGetCurrentInteractionProfile(XrSession session, XrPath topLevelUserPath,
+                                                XrInteractionProfileState* interactionProfile);
+PHYSHAND_SIM_API xrEnumerateBoundSourcesForAction(
+    XrSession session, const XrBoundSourcesForActionEnumerateInfo* enumerateInfo,
+    uint32_t sourceCapacityInput, uint32_t* sourceCountOutput, XrPath* sources);
+PHYSHAND_SIM_API xrGetInputSourceLocalizedName(XrSession session,
+                                               const XrInputSourceLocalizedNameGetInfo* getInfo,
+                                               uint32_t bufferCapacityInput,
+                                               uint32_t* bufferCountOutput, char* buffer);
+PHYSHAND_SIM_API xrApplyHapticFeedback(XrSession session,
+                                       const XrHapticActionInfo* hapticActionInfo,
+                                       const XrHapticBaseHeader* hapticFeedback);
+PHYSHAND_SIM_API xrStopHapticFeedback(XrSession session,
+                                      const XrHapticActionInfo* hapticActionInfo);
 
 // sim_hand_tracking.cpp
 PHYSHAND_SIM_API xrCreateHandTrackerEXT(XrSession session,
@@ -391,5 +487,49 @@ PHYSHAND_SIM_API xrDestroyHandTrackerEXT(XrHandTrackerEXT handTracker);
 PHYSHAND_SIM_API xrLocateHandJointsEXT(XrHandTrackerEXT handTracker,
                                        const XrHandJointsLocateInfoEXT* locateInfo,
                                        XrHandJointLocationsEXT* locations);
+
+// sim_vulkan.cpp: XR_KHR_vulkan_enable2
+PHYSHAND_SIM_API xrGetVulkanGraphicsRequirements2KHR(
+    XrInstance instance, XrSystemId systemId,
+    XrGraphicsRequirementsVulkanKHR* graphicsRequirements);
+PHYSHAND_SIM_API xrCreateVulkanInstanceKHR(XrInstance instance,
+                                           const XrVulkanInstanceCreateInfoKHR* createInfo,
+                                           VkInstance* vulkanInstance, VkResult* vulkanResult);
+PHYSHAND_SIM_API xrGetVulkanGraphicsDevice2KHR(XrInstance instance,
+                                               const XrVulkanGraphicsDeviceGetInfoKHR* getInfo,
+                                               VkPhysicalDevice* vulkanPhysicalDevice);
+PHYSHAND_SIM_API xrCreateVulkanDeviceKHR(XrInstance instance,
+                                         const XrVulkanDeviceCreateInfoKHR* createInfo,
+                                         VkDevice* vulkanDevice, VkResult* vulkanResult);
+// sim_vulkan.cpp: XR_KHR_vulkan_enable
+PHYSHAND_SIM_API xrGetVulkanInstanceExtensionsKHR(XrInstance instance, XrSystemId systemId,
+                                                  uint32_t bufferCapacityInput,
+                                                  uint32_t* bufferCountOutput, char* buffer);
+PHYSHAND_SIM_API xrGetVulkanDeviceExtensionsKHR(XrInstance instance, XrSystemId systemId,
+                                                uint32_t bufferCapacityInput,
+                                                uint32_t* bufferCountOutput, char* buffer);
+PHYSHAND_SIM_API xrGetVulkanGraphicsDeviceKHR(XrInstance instance, XrSystemId systemId,
+                                              VkInstance vkInstance,
+                                              VkPhysicalDevice* vkPhysicalDevice);
+PHYSHAND_SIM_API xrGetVulkanGraphicsRequirementsKHR(
+    XrInstance instance, XrSystemId systemId,
+    XrGraphicsRequirementsVulkanKHR* graphicsRequirements);
+
+// sim_swapchain.cpp
+PHYSHAND_SIM_API xrEnumerateSwapchainFormats(XrSession session, uint32_t formatCapacityInput,
+                                             uint32_t* formatCountOutput, int64_t* formats);
+PHYSHAND_SIM_API xrCreateSwapchain(XrSession session, const XrSwapchainCreateInfo* createInfo,
+                                   XrSwapchain* swapchain);
+PHYSHAND_SIM_API xrDestroySwapchain(XrSwapchain swapchain);
+PHYSHAND_SIM_API xrEnumerateSwapchainImages(XrSwapchain swapchain, uint32_t imageCapacityInput,
+                                            uint32_t* imageCountOutput,
+                                            XrSwapchainImageBaseHeader* images);
+PHYSHAND_SIM_API xrAcquireSwapchainImage(XrSwapchain swapchain,
+                                         const XrSwapchainImageAcquireInfo* acquireInfo,
+                                         uint32_t* index);
+PHYSHAND_SIM_API xrWaitSwapchainImage(XrSwapchain swapchain,
+                                      const XrSwapchainImageWaitInfo* waitInfo);
+PHYSHAND_SIM_API xrReleaseSwapchainImage(XrSwapchain swapchain,
+                                         const XrSwapchainImageReleaseInfo* releaseInfo);
 
 }  // namespace physhand::sim

@@ -10,7 +10,8 @@
 namespace physhand::sim {
 namespace {
 
-enum class Needs { Instance, NoInstance, HandTracking };
+// What a function needs: an instance, none, or an instance with its extension enabled.
+enum class Needs { Instance, NoInstance, HandTracking, VulkanEnable, VulkanEnable2 };
 
 struct Entry {
     std::string_view name;
@@ -68,9 +69,29 @@ const auto kEntries = std::to_array<Entry>({
     PHYSHAND_SIM_ENTRY(xrGetActionStateVector2f, Needs::Instance),
     PHYSHAND_SIM_ENTRY(xrGetActionStatePose, Needs::Instance),
     PHYSHAND_SIM_ENTRY(xrCreateActionSpace, Needs::Instance),
+    PHYSHAND_SIM_ENTRY(xrGetCurrentInteractionProfile, Needs::Instance),
+    PHYSHAND_SIM_ENTRY(xrEnumerateBoundSourcesForAction, Needs::Instance),
+    PHYSHAND_SIM_ENTRY(xrGetInputSourceLocalizedName, Needs::Instance),
+    PHYSHAND_SIM_ENTRY(xrApplyHapticFeedback, Needs::Instance),
+    PHYSHAND_SIM_ENTRY(xrStopHapticFeedback, Needs::Instance),
+    PHYSHAND_SIM_ENTRY(xrEnumerateSwapchainFormats, Needs::Instance),
+    PHYSHAND_SIM_ENTRY(xrCreateSwapchain, Needs::Instance),
+    PHYSHAND_SIM_ENTRY(xrDestroySwapchain, Needs::Instance),
+    PHYSHAND_SIM_ENTRY(xrEnumerateSwapchainImages, Needs::Instance),
+    PHYSHAND_SIM_ENTRY(xrAcquireSwapchainImage, Needs::Instance),
+    PHYSHAND_SIM_ENTRY(xrWaitSwapchainImage, Needs::Instance),
+    PHYSHAND_SIM_ENTRY(xrReleaseSwapchainImage, Needs::Instance),
     PHYSHAND_SIM_ENTRY(xrCreateHandTrackerEXT, Needs::HandTracking),
     PHYSHAND_SIM_ENTRY(xrDestroyHandTrackerEXT, Needs::HandTracking),
     PHYSHAND_SIM_ENTRY(xrLocateHandJointsEXT, Needs::HandTracking),
+    PHYSHAND_SIM_ENTRY(xrGetVulkanGraphicsRequirements2KHR, Needs::VulkanEnable2),
+    PHYSHAND_SIM_ENTRY(xrCreateVulkanInstanceKHR, Needs::VulkanEnable2),
+    PHYSHAND_SIM_ENTRY(xrGetVulkanGraphicsDevice2KHR, Needs::VulkanEnable2),
+    PHYSHAND_SIM_ENTRY(xrCreateVulkanDeviceKHR, Needs::VulkanEnable2),
+    PHYSHAND_SIM_ENTRY(xrGetVulkanInstanceExtensionsKHR, Needs::VulkanEnable),
+    PHYSHAND_SIM_ENTRY(xrGetVulkanDeviceExtensionsKHR, Needs::VulkanEnable),
+    PHYSHAND_SIM_ENTRY(xrGetVulkanGraphicsDeviceKHR, Needs::VulkanEnable),
+    PHYSHAND_SIM_ENTRY(xrGetVulkanGraphicsRequirementsKHR, Needs::VulkanEnable),
 });
 
 #undef PHYSHAND_SIM_ENTRY
@@ -99,9 +120,10 @@ XrResult xrGetInstanceProcAddr(XrInstance instance, const char* name,
             const InstanceData* data = rt.instances.find(instance);
             if (data == nullptr) return XR_ERROR_HANDLE_INVALID;
             if (entry == nullptr) return XR_ERROR_FUNCTION_UNSUPPORTED;
-            if (entry->needs == Needs::HandTracking && !data->hand_tracking) {
-                return XR_ERROR_FUNCTION_UNSUPPORTED;
-            }
+            bool enabled = (entry->needs != Needs::HandTracking || data->hand_tracking) &&
+                           (entry->needs != Needs::VulkanEnable || data->vulkan_enable) &&
+                           (entry->needs != Needs::VulkanEnable2 || data->vulkan_enable2);
+            if (!enabled) return XR_ERROR_FUNCTION_UNSUPPORTED;
         }
         *function = entry->function;
         return XR_SUCCESS;

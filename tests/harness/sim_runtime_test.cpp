@@ -1,83 +1,24 @@
 // The simulated runtime seen as an application sees it: through the real Khronos loader,
-// which finds the runtime by the manifest the build generates.
+// which finds the runtime by the manifest the build generates. Headless sessions; Vulkan
+// ones are tested in sim_vulkan_test.cpp.
 
 #include <dlfcn.h>
-#include <gtest/gtest.h>
-#include <openxr/openxr.h>
 
 #include <Eigen/Geometry>
 #include <array>
 #include <cmath>
-#include <cstdint>
-#include <cstdlib>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <numbers>
-#include <optional>
-#include <string>
-#include <vector>
 
-#include "frame_clock.h"
 #include "loader_negotiation.h"
 #include "scene.h"
+#include "sim_runtime_fixture.h"
 #include "tracking.h"
 
 namespace {
 
-constexpr XrTime kPeriod = physhand::kFramePeriodNs;  // 1/90 s
+using namespace physhand::sim_test;
 
-// Scene time of a display time, when the first frame displayed at `first` is scene frame 1.
-double scene_time(XrTime time, XrTime first) {
-    return physhand::clock_seconds(time - first + kPeriod);
-}
 constexpr double kEyeHeight = 1.6;
-constexpr double kDuration = 0.5;
-constexpr double kDropoutFrom = 0.2, kDropoutTo = 0.26;
-
-// A right hand that moves, turns, curls and drops out once; no left hand.
-constexpr const char* kScene = R"({
-  "format": "physhand-scene/1",
-  "name": "sim_runtime_test",
-  "description": "keyframed right hand with one dropout",
-  "duration_s": 0.5,
-  "colliders": [
-    { "id": "floor", "shape": "plane", "normal": [0, 1, 0], "offset": 0, "motion": "static" }
-  ],
-  "hands": {
-    "right": {
-      "keyframes": [
-        { "t": 0.0, "wrist": { "position": [0.15, 1.1, -0.3], "orientation": [0, 0, 0, 1] },
-          "curl": [0.1, 0.1, 0.1, 0.1, 0.1] },
-        { "t": 0.4, "wrist": { "position": [0.05, 1.0, -0.45],
-                               "orientation": [0.258819, 0, 0, 0.9659258] },
-          "curl": [0.5, 0.8, 0.8, 0.7, 0.6], "spread": 0.4 }
-      ],
-      "interpolation": "smooth",
-      "scale": 1.0
-    }
-  },
-  "tracking": { "rate_hz": 90,
-                "dropouts": [ { "hand": "right", "from_s": 0.2, "to_s": 0.26 } ] }
-})";
-
-// A zeroed OpenXR struct carrying its type tag (the usual `XrFoo x{XR_TYPE_FOO}` trips
-// -Wmissing-field-initializers).
-template <typename T>
-T xr(XrStructureType type) {
-    T s{};
-    s.type = type;
-    return s;
-}
-
-template <typename Handle>
-Handle bogus_handle() {
-    return reinterpret_cast<Handle>(std::uintptr_t{0xdead0000});
-}
-
-XrPosef identity_pose() {
-    return {{0, 0, 0, 1}, {0, 0, 0}};
-}
 
 void expect_position(const XrVector3f& actual, double x, double y, double z) {
     EXPECT_NEAR(actual.x, x, 1e-5);
@@ -111,144 +52,8 @@ struct HandJoints {
     std::array<XrHandJointVelocityEXT, XR_HAND_JOINT_COUNT_EXT> joint_velocities{};
 };
 
-class SimRuntimeTest : public ::testing::Test {
+class SimRuntimeTest : public SimRuntimeFixture {
   protected:
-    static void SetUpTestSuite() {
-        setenv("XR_RUNTIME_JSON", PHYSHAND_SIM_RUNTIME_JSON, 1);
-        unsetenv("XR_LOADER_DEBUG");
-        // No layer may come between the test and the runtime, the project's implicit one
-        // included.
-        unsetenv("XR_ENABLE_API_LAYERS");
-        setenv("DISABLE_XR_APILAYER_PHYSHAND_physical_hands", "1", 1);
-    }
-
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        scene_path_ = std::filesystem::temp_directory_path() /
-                      (std::string("physhand_sim_runtime_test_") + info->name() + ".json");
-        std::ofstream(scene_path_) << kScene;
-        setenv("PHYSHAND_SIM_SCENE", scene_path_.c_str(), 1);
-    }
-
-    void TearDown() override {
-        if (instance_ != XR_NULL_HANDLE) {
-            EXPECT_EQ(xrDestroyInstance(instance_), XR_SUCCESS);
-        }
-        std::filesystem::remove(scene_path_);
-    }
-
-    XrResult create_instance(std::vector<const char*> extensions = {
-                                 XR_EXT_HAND_TRACKING_EXTENSION_NAME,
-                                 XR_MND_HEADLESS_EXTENSION_NAME}) {
-        auto info = xr<XrInstanceCreateInfo>(XR_TYPE_INSTANCE_CREATE_INFO);
-        std::strcpy(info.applicationInfo.applicationName, "sim_runtime_test");
-        info.applicationInfo.apiVersion = XR_CURRENT_API_VERSION;
-        info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
-        info.enabledExtensionNames = extensions.data();
-        return xrCreateInstance(&info, &instance_);
-    }
-
-    void destroy_instance() {
-        ASSERT_EQ(xrDestroyInstance(instance_), XR_SUCCESS);
-        instance_ = XR_NULL_HANDLE;
-    }
-
-    XrSystemId system() {
-        auto info = xr<XrSystemGetInfo>(XR_TYPE_SYSTEM_GET_INFO);
-        info.formFactor = XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY;
-        XrSystemId id = XR_NULL_SYSTEM_ID;
-        EXPECT_EQ(xrGetSystem(instance_, &info, &id), XR_SUCCESS);
-        return id;
-    }
-
-    XrResult create_session(XrSession* session, const void* next = nullptr) {
-        auto info = xr<XrSessionCreateInfo>(XR_TYPE_SESSION_CREATE_INFO);
-        info.next = next;
-        info.systemId = system();
-        return xrCreateSession(instance_, &info, session);
-    }
-
-    XrSession session() {
-        XrSession created = XR_NULL_HANDLE;
-        EXPECT_EQ(create_session(&created), XR_SUCCESS);
-        return created;
-    }
-
-    // The next session state change, or nullopt when no event is queued.
-    std::optional<XrSessionState> poll_state() {
-        auto event = xr<XrEventDataBuffer>(XR_TYPE_EVENT_DATA_BUFFER);
-        XrResult result = xrPollEvent(instance_, &event);
-        if (result == XR_EVENT_UNAVAILABLE) return std::nullopt;
-        EXPECT_EQ(result, XR_SUCCESS);
-        EXPECT_EQ(event.type, XR_TYPE_EVENT_DATA_SESSION_STATE_CHANGED);
-        return reinterpret_cast<const XrEventDataSessionStateChanged&>(event).state;
-    }
-
-    void expect_states(std::initializer_list<XrSessionState> states) {
-        for (XrSessionState state : states) EXPECT_EQ(poll_state(), state);
-        EXPECT_EQ(poll_state(), std::nullopt);
-    }
-
-    static XrResult begin_session(XrSession session) {
-        auto info = xr<XrSessionBeginInfo>(XR_TYPE_SESSION_BEGIN_INFO);
-        info.primaryViewConfigurationType = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
-        return xrBeginSession(session, &info);
-    }
-
-    XrSession focused_session() {
-        XrSession created = session();
-        expect_states({XR_SESSION_STATE_IDLE, XR_SESSION_STATE_READY});
-        EXPECT_EQ(begin_session(created), XR_SUCCESS);
-        expect_states(
-            {XR_SESSION_STATE_SYNCHRONIZED, XR_SESSION_STATE_VISIBLE, XR_SESSION_STATE_FOCUSED});
-        return created;
-    }
-
-    static XrResult wait_frame(XrSession session, XrFrameState* state) {
-        auto info = xr<XrFrameWaitInfo>(XR_TYPE_FRAME_WAIT_INFO);
-        *state = xr<XrFrameState>(XR_TYPE_FRAME_STATE);
-        return xrWaitFrame(session, &info, state);
-    }
-
-    static XrResult end_frame(XrSession session, XrTime display_time) {
-        auto info = xr<XrFrameEndInfo>(XR_TYPE_FRAME_END_INFO);
-        info.displayTime = display_time;
-        info.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
-        return xrEndFrame(session, &info);
-    }
-
-    // One whole frame; returns its predicted display time.
-    static XrTime frame(XrSession session) {
-        XrFrameState state;
-        EXPECT_EQ(wait_frame(session, &state), XR_SUCCESS);
-        EXPECT_EQ(xrBeginFrame(session, nullptr), XR_SUCCESS);
-        EXPECT_EQ(end_frame(session, state.predictedDisplayTime), XR_SUCCESS);
-        return state.predictedDisplayTime;
-    }
-
-    static XrSpace reference_space(XrSession session, XrReferenceSpaceType type,
-                                   XrPosef pose = identity_pose()) {
-        auto info = xr<XrReferenceSpaceCreateInfo>(XR_TYPE_REFERENCE_SPACE_CREATE_INFO);
-        info.referenceSpaceType = type;
-        info.poseInReferenceSpace = pose;
-        XrSpace space = XR_NULL_HANDLE;
-        EXPECT_EQ(xrCreateReferenceSpace(session, &info, &space), XR_SUCCESS);
-        return space;
-    }
-
-    static XrSpaceLocation locate(XrSpace space, XrSpace base, XrTime time) {
-        auto location = xr<XrSpaceLocation>(XR_TYPE_SPACE_LOCATION);
-        EXPECT_EQ(xrLocateSpace(space, base, time, &location), XR_SUCCESS);
-        return location;
-    }
-
-    template <typename Pfn>
-    Pfn function(const char* name) {
-        PFN_xrVoidFunction fn = nullptr;
-        EXPECT_EQ(xrGetInstanceProcAddr(instance_, name, &fn), XR_SUCCESS) << name;
-        return reinterpret_cast<Pfn>(fn);
-    }
-
     XrHandTrackerEXT hand_tracker(XrSession session, XrHandEXT hand) {
         auto info = xr<XrHandTrackerCreateInfoEXT>(XR_TYPE_HAND_TRACKER_CREATE_INFO_EXT);
         info.hand = hand;
@@ -273,9 +78,6 @@ class SimRuntimeTest : public ::testing::Test {
         return function<PFN_xrLocateHandJointsEXT>("xrLocateHandJointsEXT")(tracker, &info,
                                                                             &out.locations);
     }
-
-    std::filesystem::path scene_path_;
-    XrInstance instance_ = XR_NULL_HANDLE;
 };
 
 TEST_F(SimRuntimeTest, AdvertisesExtensionsAndRejectsUnknownOnes) {
@@ -380,16 +182,31 @@ TEST_F(SimRuntimeTest, InternsPaths) {
     EXPECT_EQ(xrPathToString(instance_, 12345, sizeof(text), &count, text), XR_ERROR_PATH_INVALID);
 }
 
-TEST_F(SimRuntimeTest, OnlyHeadlessSessionsAreCreated) {
+TEST_F(SimRuntimeTest, SessionsAreHeadlessOrVulkan) {
     ASSERT_EQ(create_instance({XR_EXT_HAND_TRACKING_EXTENSION_NAME}), XR_SUCCESS);
     XrSession created = XR_NULL_HANDLE;
     EXPECT_EQ(create_session(&created), XR_ERROR_GRAPHICS_DEVICE_INVALID);
     destroy_instance();
 
     ASSERT_EQ(create_instance(), XR_SUCCESS);
-    auto binding = xr<XrBaseInStructure>(XR_TYPE_GRAPHICS_BINDING_VULKAN_KHR);
-    EXPECT_EQ(create_session(&created, &binding), XR_ERROR_GRAPHICS_DEVICE_INVALID);
-    EXPECT_EQ(create_session(&created), XR_SUCCESS);
+    // A Vulkan binding needs a Vulkan extension enabled; other graphics APIs never work.
+    auto vulkan = xr<XrBaseInStructure>(XR_TYPE_GRAPHICS_BINDING_VULKAN_KHR);
+    EXPECT_EQ(create_session(&created, &vulkan), XR_ERROR_GRAPHICS_DEVICE_INVALID);
+    auto opengl = xr<XrBaseInStructure>(XR_TYPE_GRAPHICS_BINDING_OPENGL_XLIB_KHR);
+    EXPECT_EQ(create_session(&created, &opengl), XR_ERROR_GRAPHICS_DEVICE_INVALID);
+    ASSERT_EQ(create_session(&created), XR_SUCCESS);
+
+    // A headless session has no swapchain format.
+    uint32_t count = 1;
+    EXPECT_EQ(xrEnumerateSwapchainFormats(created, 0, &count, nullptr), XR_SUCCESS);
+    EXPECT_EQ(count, 0u);
+    auto info = xr<XrSwapchainCreateInfo>(XR_TYPE_SWAPCHAIN_CREATE_INFO);
+    info.usageFlags = XR_SWAPCHAIN_USAGE_COLOR_ATTACHMENT_BIT;
+    info.format = 43;  // VK_FORMAT_R8G8B8A8_SRGB
+    info.width = info.height = 16;
+    info.sampleCount = info.faceCount = info.arraySize = info.mipCount = 1;
+    XrSwapchain swapchain = XR_NULL_HANDLE;
+    EXPECT_EQ(xrCreateSwapchain(created, &info, &swapchain), XR_ERROR_SWAPCHAIN_FORMAT_UNSUPPORTED);
 }
 
 TEST_F(SimRuntimeTest, HeadlessSessionReachesFocusedOneStatePerPoll) {
@@ -440,6 +257,7 @@ TEST_F(SimRuntimeTest, FrameLoopAdvancesExactlyOnePeriod) {
     ASSERT_EQ(xrBeginFrame(running, nullptr), XR_SUCCESS);
     auto quad = xr<XrCompositionLayerQuad>(XR_TYPE_COMPOSITION_LAYER_QUAD);
     quad.space = bogus_handle<XrSpace>();
+    quad.pose = identity_pose();
     std::vector<const XrCompositionLayerBaseHeader*> layers(
         17, reinterpret_cast<const XrCompositionLayerBaseHeader*>(&quad));
     auto end_info = xr<XrFrameEndInfo>(XR_TYPE_FRAME_END_INFO);
@@ -454,6 +272,9 @@ TEST_F(SimRuntimeTest, FrameLoopAdvancesExactlyOnePeriod) {
     end_info.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_ADDITIVE;
     EXPECT_EQ(xrEndFrame(running, &end_info), XR_ERROR_ENVIRONMENT_BLEND_MODE_UNSUPPORTED);
     end_info.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
+    // A headless session has no swapchain for a layer to show.
+    EXPECT_EQ(xrEndFrame(running, &end_info), XR_ERROR_HANDLE_INVALID);
+    end_info.layerCount = 0;
     EXPECT_EQ(xrEndFrame(running, &end_info), XR_SUCCESS);
 }
 
@@ -743,6 +564,7 @@ TEST_F(SimRuntimeTest, ActionsExistButAreNeverActive) {
     XrAction select = action("select", XR_ACTION_TYPE_BOOLEAN_INPUT);
     XrAction squeeze = action("squeeze", XR_ACTION_TYPE_FLOAT_INPUT);
     XrAction aim = action("aim", XR_ACTION_TYPE_POSE_INPUT);
+    XrAction buzz = action("buzz", XR_ACTION_TYPE_VIBRATION_OUTPUT);
 
     XrPath profile = XR_NULL_PATH, click = XR_NULL_PATH;
     ASSERT_EQ(xrStringToPath(instance_, "/interaction_profiles/khr/simple_controller", &profile),
@@ -762,6 +584,11 @@ TEST_F(SimRuntimeTest, ActionsExistButAreNeverActive) {
     sync.countActiveActionSets = 1;
     sync.activeActionSets = &active;
     EXPECT_EQ(xrSyncActions(running, &sync), XR_ERROR_ACTIONSET_NOT_ATTACHED);
+    XrPath right_hand = XR_NULL_PATH;
+    ASSERT_EQ(xrStringToPath(instance_, "/user/hand/right", &right_hand), XR_SUCCESS);
+    auto current = xr<XrInteractionProfileState>(XR_TYPE_INTERACTION_PROFILE_STATE);
+    EXPECT_EQ(xrGetCurrentInteractionProfile(running, right_hand, &current),
+              XR_ERROR_ACTIONSET_NOT_ATTACHED);
     auto attach = xr<XrSessionActionSetsAttachInfo>(XR_TYPE_SESSION_ACTION_SETS_ATTACH_INFO);
     attach.countActionSets = 1;
     attach.actionSets = &set;
@@ -783,6 +610,27 @@ TEST_F(SimRuntimeTest, ActionsExistButAreNeverActive) {
     auto pose = xr<XrActionStatePose>(XR_TYPE_ACTION_STATE_POSE);
     ASSERT_EQ(xrGetActionStatePose(running, &get, &pose), XR_SUCCESS);
     EXPECT_EQ(pose.isActive, XR_FALSE);
+
+    // No controller: no profile, no bound source, nothing to vibrate (which succeeds).
+    current.interactionProfile = profile;
+    ASSERT_EQ(xrGetCurrentInteractionProfile(running, right_hand, &current), XR_SUCCESS);
+    EXPECT_EQ(current.interactionProfile, XR_NULL_PATH);
+    auto bound =
+        xr<XrBoundSourcesForActionEnumerateInfo>(XR_TYPE_BOUND_SOURCES_FOR_ACTION_ENUMERATE_INFO);
+    bound.action = select;
+    uint32_t count = 1;
+    ASSERT_EQ(xrEnumerateBoundSourcesForAction(running, &bound, 0, &count, nullptr), XR_SUCCESS);
+    EXPECT_EQ(count, 0u);
+    auto haptic = xr<XrHapticActionInfo>(XR_TYPE_HAPTIC_ACTION_INFO);
+    haptic.action = buzz;
+    auto vibration = xr<XrHapticVibration>(XR_TYPE_HAPTIC_VIBRATION);
+    vibration.duration = XR_MIN_HAPTIC_DURATION;
+    vibration.amplitude = 1;
+    const auto* feedback = reinterpret_cast<const XrHapticBaseHeader*>(&vibration);
+    EXPECT_EQ(xrApplyHapticFeedback(running, &haptic, feedback), XR_SUCCESS);
+    EXPECT_EQ(xrStopHapticFeedback(running, &haptic), XR_SUCCESS);
+    haptic.action = select;
+    EXPECT_EQ(xrApplyHapticFeedback(running, &haptic, feedback), XR_ERROR_ACTION_TYPE_MISMATCH);
 
     auto space_info = xr<XrActionSpaceCreateInfo>(XR_TYPE_ACTION_SPACE_CREATE_INFO);
     space_info.action = aim;
@@ -846,7 +694,7 @@ TEST_F(SimRuntimeTest, NegotiatesAndValidatesWithoutTheLoader) {
     auto info = xr<XrInstanceCreateInfo>(XR_TYPE_INSTANCE_CREATE_INFO);
     std::strcpy(info.applicationInfo.applicationName, "sim_runtime_test");
     info.applicationInfo.apiVersion = XR_CURRENT_API_VERSION;
-    const char* unknown = "XR_KHR_vulkan_enable2";
+    const char* unknown = "XR_PHYSHAND_no_such_extension";
     info.enabledExtensionCount = 1;
     info.enabledExtensionNames = &unknown;
     XrInstance direct = XR_NULL_HANDLE;

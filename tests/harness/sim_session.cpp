@@ -31,19 +31,16 @@ void queue_stopping(InstanceData& instance, XrSession handle, SessionData& sessi
     queue_state(instance, handle, session, XR_SESSION_STATE_STOPPING);
 }
 
-// Any struct whose type is a graphics binding: matched by name (XR_TYPE_GRAPHICS_BINDING_*)
-// so that no graphics API the headers know is missed.
-bool has_graphics_binding(const void* next) {
+// The first struct whose type is a graphics binding, or nullptr: matched by name
+// (XR_TYPE_GRAPHICS_BINDING_*) so that a binding for any graphics API the headers know is
+// seen, and refused unless it is Vulkan's.
+const XrBaseInStructure* graphics_binding(const void* next) {
     constexpr std::string_view kPrefix = "XR_TYPE_GRAPHICS_BINDING_";
     for (auto* s = static_cast<const XrBaseInStructure*>(next); s != nullptr; s = s->next) {
         const char* name = structure_type_name(s->type);
-        if (name != nullptr && std::string_view(name).starts_with(kPrefix)) return true;
+        if (name != nullptr && std::string_view(name).starts_with(kPrefix)) return s;
     }
-    return false;
-}
-
-bool is_supported_layer(XrStructureType type) {
-    return type == XR_TYPE_COMPOSITION_LAYER_PROJECTION || type == XR_TYPE_COMPOSITION_LAYER_QUAD;
+    return nullptr;
 }
 
 }  // namespace
@@ -56,6 +53,9 @@ void destroy_session(Runtime& rt, XrSession session) {
     rt.hand_trackers.erase_if([&](XrHandTrackerEXT, const HandTrackerData& tracker) {
         return tracker.session == session;
     });
+    // Before the session: their images are freed on its device.
+    rt.swapchains.erase_if(
+        [&](XrSwapchain, const SwapchainData& swapchain) { return swapchain.session == session; });
     rt.sessions.erase(session);
 }
 
@@ -68,12 +68,20 @@ XrResult xrCreateSession(XrInstance instance, const XrSessionCreateInfo* createI
             return XR_ERROR_VALIDATION_FAILURE;
         }
         if (createInfo->systemId != kSystemId) return XR_ERROR_SYSTEM_INVALID;
-        // Only headless sessions exist so far; XR_KHR_vulkan_enable2 will accept its binding
-        // here.
-        if (!data->headless || has_graphics_binding(createInfo->next)) {
+        std::unique_ptr<VulkanSession> vulkan;
+        const XrBaseInStructure* binding = graphics_binding(createInfo->next);
+        if (binding == nullptr) {
+            if (!data->headless) return XR_ERROR_GRAPHICS_DEVICE_INVALID;
+        } else if (binding->type == XR_TYPE_GRAPHICS_BINDING_VULKAN_KHR) {
+            if (XrResult result = open_vulkan_session(
+                    *data, *reinterpret_cast<const XrGraphicsBindingVulkanKHR*>(binding), &vulkan);
+                XR_FAILED(result)) {
+                return result;
+            }
+        } else {
             return XR_ERROR_GRAPHICS_DEVICE_INVALID;
         }
-        *session = rt.sessions.add(SessionData{.instance = instance});
+        *session = rt.sessions.add(SessionData{.instance = instance, .vulkan = std::move(vulkan)});
         SessionData& created = *rt.sessions.find(*session);
         queue_state(*data, *session, created, XR_SESSION_STATE_IDLE);
         queue_state(*data, *session, created, XR_SESSION_STATE_READY);
@@ -193,15 +201,11 @@ XrResult xrEndFrame(XrSession session, const XrFrameEndInfo* frameEndInfo) {
         if (frameEndInfo->environmentBlendMode != XR_ENVIRONMENT_BLEND_MODE_OPAQUE) {
             return XR_ERROR_ENVIRONMENT_BLEND_MODE_UNSUPPORTED;
         }
-        if (frameEndInfo->layerCount > kMaxLayerCount) return XR_ERROR_LAYER_LIMIT_EXCEEDED;
-        // Layers are checked but not composed: a headless session has nothing to show.
-        for (uint32_t i = 0; i < frameEndInfo->layerCount; ++i) {
-            const XrCompositionLayerBaseHeader* layer = frameEndInfo->layers[i];
-            if (layer == nullptr || !is_supported_layer(layer->type)) return XR_ERROR_LAYER_INVALID;
-            const SpaceData* space = rt.spaces.find(layer->space);
-            if (space == nullptr || space->session != session) return XR_ERROR_HANDLE_INVALID;
+        if (XrResult result = check_layers(rt, session, *frameEndInfo); XR_FAILED(result)) {
+            return result;
         }
         data->frame_begun = false;
+        capture_frame(rt, session, *frameEndInfo);
         return XR_SUCCESS;
     });
 }

@@ -45,6 +45,15 @@ std::optional<Pose> space_in_stage(const SpaceData& space) {
     return reference_in_stage(*space.reference) * space.pose_in_reference;
 }
 
+Pose eye_in_stage(std::uint32_t view) {
+    return head_in_stage() *
+           Pose{Vec3(view == 0 ? -kHalfEyeDistance : kHalfEyeDistance, 0, 0), Quat::Identity()};
+}
+
+XrFovf eye_fov() {
+    return {-kHalfFov, kHalfFov, kHalfFov, -kHalfFov};
+}
+
 XrResult xrEnumerateReferenceSpaces(XrSession session, uint32_t spaceCapacityInput,
                                     uint32_t* spaceCountOutput, XrReferenceSpaceType* spaces) {
     return guarded([&](Runtime& rt) {
@@ -147,12 +156,8 @@ XrResult xrLocateViews(XrSession session, const XrViewLocateInfo* viewLocateInfo
         return fill_array(
             viewCapacityInput, viewCountOutput, views, kViewCount, [&](XrView& out, uint32_t i) {
                 if (out.type != XR_TYPE_VIEW) return XR_ERROR_VALIDATION_FAILURE;
-                // View 0 is the left eye.
-                Pose eye = head_in_stage() *
-                           Pose{Vec3(i == 0 ? -kHalfEyeDistance : kHalfEyeDistance, 0, 0),
-                                Quat::Identity()};
-                out.pose = to_xr(base_pose ? base_pose->inverse() * eye : Pose{});
-                out.fov = {-kHalfFov, kHalfFov, kHalfFov, -kHalfFov};
+                out.pose = to_xr(base_pose ? base_pose->inverse() * eye_in_stage(i) : Pose{});
+                out.fov = eye_fov();
                 return XR_SUCCESS;
             });
     });

@@ -7,7 +7,6 @@ namespace physhand::sim {
 namespace {
 
 constexpr const char* kSystemName = "physhand simulated HMD";
-constexpr uint32_t kRecommendedViewSize = 1024;
 constexpr uint32_t kMaxViewSize = 4096;
 
 XrResult check_system(Runtime& rt, XrInstance instance, XrSystemId systemId) {
@@ -117,9 +116,9 @@ XrResult xrEnumerateViewConfigurationViews(XrInstance instance, XrSystemId syste
                               if (out.type != XR_TYPE_VIEW_CONFIGURATION_VIEW) {
                                   return XR_ERROR_VALIDATION_FAILURE;
                               }
-                              out.recommendedImageRectWidth = kRecommendedViewSize;
+                              out.recommendedImageRectWidth = kViewSize;
                               out.maxImageRectWidth = kMaxViewSize;
-                              out.recommendedImageRectHeight = kRecommendedViewSize;
+                              out.recommendedImageRectHeight = kViewSize;
                               out.maxImageRectHeight = kMaxViewSize;
                               out.recommendedSwapchainSampleCount = 1;
                               out.maxSwapchainSampleCount = 1;

@@ -34,7 +34,7 @@
 **
 ** Results. Every function validates its input:
 **   XR_ERROR_VALIDATION_FAILURE  NULL pointers, wrong `type`, enum values out of range,
-**                                NaN or infinite numbers, non-positive sizes or mass,
+**                                NaN or infinite numbers, sizes or mass out of range,
 **                                counts that do not match.
 **   XR_ERROR_POSE_INVALID        a quaternion that is not unit length, or a pose whose
 **                                `space` cannot be located at `time`.
@@ -118,8 +118,8 @@ static const XrPhysicalColliderFlagsPHYSHAND XR_PHYSICAL_COLLIDER_TOUCHED_BY_RIG
 static const XrPhysicalColliderFlagsPHYSHAND XR_PHYSICAL_COLLIDER_ASLEEP_BIT_PHYSHAND = 0x00000004;
 
 /* A proxy collider: the app's stand-in for one of its objects.
-** Sizes are metres and must be > 0 where the shape uses them (a capsule's halfHeight may be
-** 0); fields a shape does not use are ignored. `pose` places the collider's local frame in
+** Sizes are metres, from 1e-4 to 1e4 where the shape uses them (a capsule's halfHeight may
+** be 0); fields a shape does not use are ignored. `pose` places the collider's local frame in
 ** `space` at `time`. */
 typedef struct XrPhysicalColliderCreateInfoPHYSHAND {
     XrStructureType type; /* XR_TYPE_PHYSICAL_COLLIDER_CREATE_INFO_PHYSHAND */
@@ -135,7 +135,7 @@ typedef struct XrPhysicalColliderCreateInfoPHYSHAND {
     const uint32_t* indices;
     XrVector3f planeNormal; /* plane: the points p with dot(planeNormal, p) = planeOffset */
     float planeOffset;      /* (normal need not be unit length, must not be zero) */
-    float mass;             /* kg; dynamic: > 0; ignored otherwise */
+    float mass;             /* kg; dynamic: 1e-6 .. 1e6; ignored otherwise */
     float friction;         /* >= 0; combined with the hand's by multiplication */
     float restitution;      /* 0 .. 1 */
     XrSpace space;

@@ -1,0 +1,125 @@
+#include <chrono>
+#include <memory>
+#include <vector>
+
+#include "dispatch.h"
+#include "layer_log.h"
+#include "overlay_session.h"
+#include "sessions.h"
+#include "xr_util.h"
+
+// xrEndFrame: the overlay of the hands is composited over the app's layers.
+namespace physhand::layer {
+
+namespace {
+
+overlay::Joints to_overlay(const HandPose& hand, const Pose& frame) {
+    overlay::Joints joints;
+    for (std::size_t i = 0; i < kJointCount; ++i) {
+        const XrVector3f p = to_xr(frame * hand.joints[i].position);
+        joints.positions[i] = {p.x, p.y, p.z};
+        joints.radii[i] = static_cast<float>(hand.radii[i]);
+    }
+    return joints;
+}
+
+const XrCompositionLayerProjection* find_projection(const XrFrameEndInfo& info) {
+    for (uint32_t i = 0; i < info.layerCount; ++i) {
+        const XrCompositionLayerBaseHeader* layer = info.layers[i];
+        if (layer != nullptr && layer->type == XR_TYPE_COMPOSITION_LAYER_PROJECTION) {
+            const auto* projection = reinterpret_cast<const XrCompositionLayerProjection*>(layer);
+            if (projection->viewCount > 0 && projection->views != nullptr) return projection;
+        }
+    }
+    return nullptr;
+}
+
+// The overlay layer for this frame, or null when there is nothing to draw or no room for
+// it. Session locked. Throws on any failure.
+const XrCompositionLayerProjection* draw_overlay(SessionState& state, const XrFrameEndInfo& info) {
+    if (info.layerCount >= state.max_layer_count || info.displayTime <= 0 || !state.simulation ||
+        (info.layerCount > 0 && info.layers == nullptr)) {
+        return nullptr;
+    }
+    const XrCompositionLayerProjection* app_layer = find_projection(info);
+    if (app_layer == nullptr) return nullptr;
+    state.advance(info.displayTime);
+
+    std::array<overlay::Hand, 2> hands;
+    bool any_active = false;
+    for (const HandSide side : kHandSides) {
+        const auto i = static_cast<std::size_t>(side);
+        any_active =
+            any_active || state.ghosts[i].active || state.simulation->hand(side).joints.active;
+    }
+    if (!any_active) return nullptr;
+    Pose frame;
+    XrSpaceLocationFlags flags = 0;
+    if (XR_FAILED(state.frame_in_space(app_layer->space, info.displayTime, frame, flags)) ||
+        (flags & kPoseValid) != kPoseValid) {
+        return nullptr;
+    }
+    for (const HandSide side : kHandSides) {
+        const auto i = static_cast<std::size_t>(side);
+        const PhysicalHandState& physical = state.simulation->hand(side);
+        hands[i].ghost_active = state.ghosts[i].active;
+        hands[i].physical_active = physical.joints.active;
+        hands[i].ghost = to_overlay(state.ghosts[i], frame);
+        hands[i].physical = to_overlay(physical.joints, frame);
+        hands[i].in_contact = physical.in_contact;
+    }
+    // Created with the first frame that has hands to draw: sessions without them pay nothing.
+    if (!state.overlay) {
+        state.overlay = std::make_unique<OverlaySession>(
+            state.instance->next, state.session, *state.vulkan, state.instance->config.tint);
+    }
+    return state.overlay->draw(*app_layer, hands);
+}
+
+// Points `submitted` at the app's layers with the overlay's after them, when it drew one.
+// Session locked. Any failure turns the overlay off for the session; the app's frame then
+// goes through unchanged, now and from now on.
+void append_overlay(SessionState& state, const XrFrameEndInfo& info, XrFrameEndInfo& submitted) {
+    const auto start = std::chrono::steady_clock::now();
+    try {
+        const XrCompositionLayerProjection* layer = draw_overlay(state, info);
+        if (layer != nullptr) {
+            // A copy: the app's array is never modified.
+            state.submitted_layers.assign(info.layers, info.layers + info.layerCount);
+            state.submitted_layers.push_back(
+                reinterpret_cast<const XrCompositionLayerBaseHeader*>(layer));
+            submitted.layers = state.submitted_layers.data();
+            submitted.layerCount = static_cast<uint32_t>(state.submitted_layers.size());
+        }
+        if (state.overlay) {
+            state.overlay->record_cpu_time(
+                std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start)
+                    .count());
+        }
+    } catch (const std::exception& e) {
+        log_failure("xrEndFrame (the overlay is off for this session)", e.what());
+        state.overlay.reset();
+        state.vulkan.reset();
+        submitted = info;
+    }
+}
+
+}  // namespace
+
+XRAPI_ATTR XrResult XRAPI_CALL EndFrame(XrSession session, const XrFrameEndInfo* frameEndInfo) {
+    return guarded("xrEndFrame", [&] {
+        const std::shared_ptr<SessionState> state = find_session(session);
+        if (!state) return XR_ERROR_HANDLE_INVALID;
+        if (frameEndInfo == nullptr) return state->instance->next.EndFrame(session, frameEndInfo);
+        XrFrameEndInfo submitted = *frameEndInfo;
+        {
+            std::lock_guard lock(state->mutex);
+            if (state->alive && state->vulkan) append_overlay(*state, *frameEndInfo, submitted);
+        }
+        // Unlocked: the runtime may block here, and other threads may locate hands meanwhile.
+        // The app synchronises xrEndFrame with xrDestroySession, so the layers stay alive.
+        return state->instance->next.EndFrame(session, &submitted);
+    });
+}
+
+}  // namespace physhand::layer

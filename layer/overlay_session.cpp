@@ -1,0 +1,208 @@
+#include "overlay_session.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+#include "hand_skeleton.h"
+#include "layer_log.h"
+
+namespace physhand::layer {
+
+namespace {
+
+// Keeps software rasterisers (lavapipe) fast; the field of view is unchanged, so the
+// overlay is only drawn at a lower resolution than the app's views.
+constexpr uint32_t kMaxExtent = 1024;
+
+void check(XrResult result, const char* call) {
+    if (XR_FAILED(result)) {
+        throw std::runtime_error(std::string(call) + " failed with XrResult " +
+                                 std::to_string(result));
+    }
+}
+
+// 8-bit sRGB formats are the ones every runtime offers; alpha is needed for blending.
+VkFormat pick_format(const NextDispatch& next, XrSession session) {
+    uint32_t count = 0;
+    check(next.EnumerateSwapchainFormats(session, 0, &count, nullptr),
+          "xrEnumerateSwapchainFormats");
+    std::vector<int64_t> formats(count);
+    check(next.EnumerateSwapchainFormats(session, count, &count, formats.data()),
+          "xrEnumerateSwapchainFormats");
+    for (const VkFormat preferred : {VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_B8G8R8A8_SRGB}) {
+        if (std::find(formats.begin(), formats.end(), preferred) != formats.end()) return preferred;
+    }
+    throw std::runtime_error("the runtime offers no 8-bit sRGB swapchain format");
+}
+
+VkExtent2D capped(const XrExtent2Di& size) {
+    const double scale = std::min({1.0, double(kMaxExtent) / std::max(size.width, 1),
+                                   double(kMaxExtent) / std::max(size.height, 1)});
+    const auto scaled = [&](int32_t v) {
+        return std::max<uint32_t>(1, static_cast<uint32_t>(std::lround(v * scale)));
+    };
+    return {scaled(size.width), scaled(size.height)};
+}
+
+bool same_extent(const VkExtent2D& a, const VkExtent2D& b) {
+    return a.width == b.width && a.height == b.height;
+}
+
+overlay::Eye to_eye(const XrPosef& pose, const XrFovf& fov) {
+    return {{pose.position.x, pose.position.y, pose.position.z},
+            {pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w},
+            fov.angleLeft,
+            fov.angleRight,
+            fov.angleUp,
+            fov.angleDown};
+}
+
+std::array<int, overlay::kJointCount> joint_parents() {
+    static_assert(overlay::kJointCount == kJointCount);
+    std::array<int, overlay::kJointCount> parents{};
+    for (int j = 0; j < overlay::kJointCount; ++j) {
+        const std::optional<Joint> parent = joint_parent(static_cast<Joint>(j));
+        parents[j] = parent ? static_cast<int>(*parent) : -1;
+    }
+    return parents;
+}
+
+}  // namespace
+
+OverlaySession::OverlaySession(const NextDispatch& next, XrSession session,
+                               const VulkanBinding& binding, bool tint)
+    : next_(next), session_(session), format_(pick_format(next, session)) {
+    overlay::CreateInfo info;
+    info.instance = binding.instance;
+    info.get_instance_proc_addr = binding.get_instance_proc_addr;
+    info.physical_device = binding.physical_device;
+    info.device = binding.device;
+    info.queue_family_index = binding.queue_family_index;
+    info.queue = binding.queue;
+    info.color_format = format_;
+    renderer_ = std::make_unique<overlay::Renderer>(info);
+    settings_.tint = tint;
+    const char* stats = std::getenv("PHYSHAND_OVERLAY_STATS");
+    collect_stats_ = stats != nullptr && std::string(stats) == "1";
+}
+
+OverlaySession::~OverlaySession() {
+    destroy_swapchain();
+    if (collect_stats_ && !cpu_us_.empty()) {
+        auto middle = cpu_us_.begin() + static_cast<std::ptrdiff_t>(cpu_us_.size() / 2);
+        std::nth_element(cpu_us_.begin(), middle, cpu_us_.end());
+        log_once("overlay CPU time per xrEndFrame: median " + std::to_string(*middle) +
+                 " us over " + std::to_string(cpu_us_.size()) + " frames");
+    }
+}
+
+void OverlaySession::record_cpu_time(double microseconds) {
+    if (collect_stats_) cpu_us_.push_back(microseconds);
+}
+
+void OverlaySession::destroy_swapchain() noexcept {
+    if (swapchain_ == XR_NULL_HANDLE) return;
+    try {
+        renderer_->wait_idle();
+        for (const VkImage image : images_) renderer_->forget_image(image);
+    } catch (const std::exception& e) {
+        log_failure("destroying the overlay swapchain", e.what());
+    }
+    next_.DestroySwapchain(swapchain_);
+    swapchain_ = XR_NULL_HANDLE;
+    images_.clear();
+    extents_.clear();
+}
+
+// One array swapchain with a layer per view, recreated when the app's views change size.
+void OverlaySession::ensure_swapchain(const XrCompositionLayerProjection& app_layer) {
+    std::vector<VkExtent2D> extents;
+    for (uint32_t i = 0; i < app_layer.viewCount; ++i) {
+        extents.push_back(capped(app_layer.views[i].subImage.imageRect.extent));
+    }
+    if (swapchain_ != XR_NULL_HANDLE &&
+        std::equal(extents.begin(), extents.end(), extents_.begin(), extents_.end(), same_extent)) {
+        return;
+    }
+    destroy_swapchain();
+    XrSwapchainCreateInfo info{};
+    info.type = XR_TYPE_SWAPCHAIN_CREATE_INFO;
+    info.usageFlags = XR_SWAPCHAIN_USAGE_COLOR_ATTACHMENT_BIT;
+    info.format = format_;
+    info.sampleCount = 1;
+    for (const VkExtent2D& e : extents) {
+        info.width = std::max(info.width, e.width);
+        info.height = std::max(info.height, e.height);
+    }
+    info.faceCount = 1;
+    info.arraySize = app_layer.viewCount;
+    info.mipCount = 1;
+    check(next_.CreateSwapchain(session_, &info, &swapchain_), "xrCreateSwapchain");
+    uint32_t count = 0;
+    check(next_.EnumerateSwapchainImages(swapchain_, 0, &count, nullptr),
+          "xrEnumerateSwapchainImages");
+    XrSwapchainImageVulkanKHR blank{};
+    blank.type = XR_TYPE_SWAPCHAIN_IMAGE_VULKAN_KHR;
+    std::vector<XrSwapchainImageVulkanKHR> images(count, blank);
+    check(next_.EnumerateSwapchainImages(
+              swapchain_, count, &count,
+              reinterpret_cast<XrSwapchainImageBaseHeader*>(images.data())),
+          "xrEnumerateSwapchainImages");
+    for (const XrSwapchainImageVulkanKHR& image : images) images_.push_back(image.image);
+    extents_ = std::move(extents);
+}
+
+const XrCompositionLayerProjection* OverlaySession::draw(
+    const XrCompositionLayerProjection& app_layer, const std::array<overlay::Hand, 2>& hands) {
+    ensure_swapchain(app_layer);
+    uint32_t index = 0;
+    check(next_.AcquireSwapchainImage(swapchain_, nullptr, &index), "xrAcquireSwapchainImage");
+    XrSwapchainImageWaitInfo wait{};
+    wait.type = XR_TYPE_SWAPCHAIN_IMAGE_WAIT_INFO;
+    wait.timeout = XR_INFINITE_DURATION;
+    check(next_.WaitSwapchainImage(swapchain_, &wait), "xrWaitSwapchainImage");
+
+    views_.clear();
+    layer_views_.clear();
+    for (uint32_t i = 0; i < app_layer.viewCount; ++i) {
+        const XrCompositionLayerProjectionView& app_view = app_layer.views[i];
+        views_.push_back({to_eye(app_view.pose, app_view.fov), images_.at(index), i, extents_[i]});
+        XrCompositionLayerProjectionView view{};
+        view.type = XR_TYPE_COMPOSITION_LAYER_PROJECTION_VIEW;
+        view.pose = app_view.pose;
+        view.fov = app_view.fov;
+        view.subImage.swapchain = swapchain_;
+        view.subImage.imageRect.extent = {static_cast<int32_t>(extents_[i].width),
+                                          static_cast<int32_t>(extents_[i].height)};
+        view.subImage.imageArrayIndex = i;
+        layer_views_.push_back(view);
+    }
+    overlay::Frame frame;
+    frame.views = views_;
+    frame.hands = hands;
+    static const std::array<int, overlay::kJointCount> parents = joint_parents();
+    frame.parents = parents;
+    frame.settings = settings_;
+    bool drawn = false;
+    try {
+        drawn = renderer_->render(frame);
+    } catch (...) {
+        // The image goes back to the runtime whatever happened to the drawing.
+        next_.ReleaseSwapchainImage(swapchain_, nullptr);
+        throw;
+    }
+    check(next_.ReleaseSwapchainImage(swapchain_, nullptr), "xrReleaseSwapchainImage");
+    if (!drawn) return nullptr;
+
+    layer_.type = XR_TYPE_COMPOSITION_LAYER_PROJECTION;
+    layer_.layerFlags = XR_COMPOSITION_LAYER_BLEND_TEXTURE_SOURCE_ALPHA_BIT;
+    layer_.space = app_layer.space;
+    layer_.viewCount = static_cast<uint32_t>(layer_views_.size());
+    layer_.views = layer_views_.data();
+    return &layer_;
+}
+
+}  // namespace physhand::layer

@@ -1,0 +1,266 @@
+// overhead_ns (shared/METRICS.md): how much longer an OpenXR call takes through the physhand
+// layer than straight to the runtime, measured in one process through the real loader and
+// the simulated runtime. Each benchmark creates its own instance (the loader allows one at
+// a time), with the implicit layer disabled by DISABLE_XR_APILAYER_PHYSHAND_physical_hands=1
+// (which the loader reads at instance creation) or enabled.
+//
+//   xrLocateSpace          a call the layer does not intercept: it hands the app the
+//                          runtime's own function, so the overhead should be nil.
+//   xrLocateHandJointsEXT  intercepted. Gated: no collider near the hand, so the layer
+//                          returns the runtime's joints and steps nothing. In contact: the
+//                          scene's hand rests pressed on a static box created through the
+//                          extension, so every call steps the physics.
+//
+// After the runs, a Markdown table of medians (CPU time per call, which another process on
+// the machine disturbs less than wall time) and overhead_ns goes to stdout, or to FILE with
+// --summary FILE. Google Benchmark's flags apply, e.g. --benchmark_repetitions=5 for
+// medians over repetitions, --benchmark_out=F.json --benchmark_out_format=json.
+//
+// Usage: physhand-overhead [--benchmark_...] [--summary FILE]
+
+#include <benchmark/benchmark.h>
+#include <openxr/openxr.h>
+#include <openxr/physhand_physical_hands.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "sim_app.h"
+
+namespace {
+
+using physhand::test::check;
+using physhand::test::SimApp;
+using physhand::test::xr;
+
+// Frames before the check and the timing: pressing_hand.json's hand comes down for 1 s,
+// then rests on the box (one already inside a collider when simulated passes through it).
+constexpr int kSettleFrames = 135;
+// The box under the hand: its top at y = 1 m, 2 cm above where the ghost palm stops.
+constexpr XrVector3f kBoxHalfExtents = {0.15f, 0.05f, 0.15f};
+constexpr XrVector3f kBoxCentre = {0.0f, 0.95f, -0.35f};
+
+enum class Path { Runtime, LayerGated, LayerContact };
+
+SimApp make_app(Path path) {
+    return SimApp({.layer = path != Path::Runtime,
+                   .extension = path == Path::LayerContact,
+                   .scene = PHYSHAND_OVERHEAD_SCENE});
+}
+
+void create_box_under_hand(const SimApp& app, XrTime time) {
+    auto info =
+        xr<XrPhysicalColliderCreateInfoPHYSHAND>(XR_TYPE_PHYSICAL_COLLIDER_CREATE_INFO_PHYSHAND);
+    info.shape = XR_PHYSICAL_COLLIDER_SHAPE_BOX_PHYSHAND;
+    info.motion = XR_PHYSICAL_COLLIDER_MOTION_STATIC_PHYSHAND;
+    info.halfExtents = kBoxHalfExtents;
+    info.friction = 0.8f;
+    info.space = app.space(XR_REFERENCE_SPACE_TYPE_STAGE);
+    info.pose = {{0.0f, 0.0f, 0.0f, 1.0f}, kBoxCentre};
+    info.time = time;
+    XrPhysicalColliderPHYSHAND box = XR_NULL_HANDLE;
+    check(app.function<PFN_xrCreatePhysicalColliderPHYSHAND>("xrCreatePhysicalColliderPHYSHAND")(
+              app.session(), &info, &box),
+          "xrCreatePhysicalColliderPHYSHAND");
+}
+
+// xrLocateHandJointsEXT of the right hand in STAGE, as an app calls it once per frame.
+class RightHand {
+  public:
+    explicit RightHand(const SimApp& app)
+        : locate_(app.function<PFN_xrLocateHandJointsEXT>("xrLocateHandJointsEXT")),
+          tracker_(app.hand_tracker(XR_HAND_RIGHT_EXT)) {
+        info_.baseSpace = app.space(XR_REFERENCE_SPACE_TYPE_STAGE);
+        locations_.jointCount = XR_HAND_JOINT_COUNT_EXT;
+        locations_.jointLocations = joints_.data();
+    }
+
+    XrResult locate(XrTime time) {
+        info_.time = time;
+        return locate_(tracker_, &info_, &locations_);
+    }
+
+    // The layer's state of the hand at `time`, read with its structure chained (only for
+    // the checks: the timed calls chain nothing).
+    XrHandJointsPhysicalStatePHYSHAND physical_state(XrTime time) {
+        auto state =
+            xr<XrHandJointsPhysicalStatePHYSHAND>(XR_TYPE_HAND_JOINTS_PHYSICAL_STATE_PHYSHAND);
+        state.jointCount = XR_HAND_JOINT_COUNT_EXT;
+        state.inContact = contacts_.data();
+        locations_.next = &state;
+        const XrResult result = locate(time);
+        locations_.next = nullptr;
+        check(result, "xrLocateHandJointsEXT");
+        return state;
+    }
+
+    bool any_contact() const {
+        return std::any_of(contacts_.begin(), contacts_.end(), [](XrBool32 c) { return c; });
+    }
+
+  private:
+    PFN_xrLocateHandJointsEXT locate_;
+    XrHandTrackerEXT tracker_;
+    XrHandJointsLocateInfoEXT info_ =
+        xr<XrHandJointsLocateInfoEXT>(XR_TYPE_HAND_JOINTS_LOCATE_INFO_EXT);
+    XrHandJointLocationsEXT locations_ =
+        xr<XrHandJointLocationsEXT>(XR_TYPE_HAND_JOINT_LOCATIONS_EXT);
+    std::array<XrHandJointLocationEXT, XR_HAND_JOINT_COUNT_EXT> joints_{};
+    std::array<XrBool32, XR_HAND_JOINT_COUNT_EXT> contacts_{};
+};
+
+void locate_space(benchmark::State& state, Path path) {
+    const SimApp app = make_app(path);
+    const XrSpace view = app.space(XR_REFERENCE_SPACE_TYPE_VIEW);
+    const XrSpace stage = app.space(XR_REFERENCE_SPACE_TYPE_STAGE);
+    const XrTime time = app.frame().predictedDisplayTime;
+    auto location = xr<XrSpaceLocation>(XR_TYPE_SPACE_LOCATION);
+    check(xrLocateSpace(view, stage, time, &location), "xrLocateSpace");
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(xrLocateSpace(view, stage, time, &location));
+    }
+}
+
+// Each call locates the hand one display period after the last, as an app does once per
+// frame, so the layer advances its simulation on every call (a second locate at the same
+// time steps nothing). The frame calls themselves stay out of the loop: the layer does not
+// intercept them, and the simulated runtime answers for any time, so they would only add
+// the same cost, and noise, to both sides of the difference.
+void locate_hand(benchmark::State& state, Path path) {
+    const SimApp app = make_app(path);
+    const XrFrameState frame = app.frame();
+    XrTime time = frame.predictedDisplayTime;
+    if (path == Path::LayerContact) create_box_under_hand(app, time);
+    RightHand hand(app);
+    for (int i = 0; i < kSettleFrames; ++i) {
+        time += frame.predictedDisplayPeriod;
+        check(hand.locate(time), "xrLocateHandJointsEXT");
+    }
+    // Gated or in contact, as the benchmark says, before and after the timed calls.
+    const auto as_named = [&] {
+        if (path == Path::Runtime) return true;
+        const bool simulated = hand.physical_state(time).isSimulated;
+        return simulated == (path == Path::LayerContact) && simulated == hand.any_contact();
+    };
+    if (!as_named()) {
+        state.SkipWithError("the hand is not gated or in contact as named");
+        return;
+    }
+    for (auto _ : state) {
+        time += frame.predictedDisplayPeriod;
+        benchmark::DoNotOptimize(hand.locate(time));
+    }
+    if (!as_named()) state.SkipWithError("the hand changed from gated or in contact as named");
+}
+
+struct Benchmark {
+    const char* name;
+    void (*run)(benchmark::State&, Path);
+    Path path;
+};
+
+constexpr std::array<Benchmark, 5> kBenchmarks = {{
+    {"xrLocateSpace/without_layer", locate_space, Path::Runtime},
+    {"xrLocateSpace/with_layer", locate_space, Path::LayerGated},
+    {"xrLocateHandJointsEXT/without_layer", locate_hand, Path::Runtime},
+    {"xrLocateHandJointsEXT/with_layer/gated", locate_hand, Path::LayerGated},
+    {"xrLocateHandJointsEXT/with_layer/contact", locate_hand, Path::LayerContact},
+}};
+
+// The rows of the summary: benchmarks compared by name.
+struct Comparison {
+    const char* call;
+    const char* what;
+    const char* without_layer;
+    const char* with_layer;
+};
+
+constexpr std::array<Comparison, 3> kComparisons = {{
+    {"xrLocateSpace", "pass-through (not intercepted)", "xrLocateSpace/without_layer",
+     "xrLocateSpace/with_layer"},
+    {"xrLocateHandJointsEXT", "hand gated (no collider near it)",
+     "xrLocateHandJointsEXT/without_layer", "xrLocateHandJointsEXT/with_layer/gated"},
+    {"xrLocateHandJointsEXT", "hand in contact with a static box",
+     "xrLocateHandJointsEXT/without_layer", "xrLocateHandJointsEXT/with_layer/contact"},
+}};
+
+// Passes everything on to the display reporter that --benchmark_format chose, and keeps each
+// benchmark's median CPU time per iteration (its only run's without repetitions).
+class MedianRecorder : public benchmark::BenchmarkReporter {
+  public:
+    explicit MedianRecorder(benchmark::BenchmarkReporter* display) : display_(display) {}
+
+    bool ReportContext(const Context& context) override { return display_->ReportContext(context); }
+    void ReportRuns(const std::vector<Run>& runs) override {
+        display_->ReportRuns(runs);
+        for (const Run& run : runs) {
+            const bool median = run.run_type == Run::RT_Aggregate && run.aggregate_name == "median";
+            const bool only_run = run.run_type == Run::RT_Iteration && run.repetitions <= 1;
+            if (!run.error_occurred && (median || only_run)) {
+                medians_ns_[run.run_name.function_name] = run.GetAdjustedCPUTime();
+            }
+        }
+    }
+    void Finalize() override { display_->Finalize(); }
+
+    std::optional<double> median_ns(const std::string& name) const {
+        const auto it = medians_ns_.find(name);
+        return it == medians_ns_.end() ? std::nullopt : std::optional<double>(it->second);
+    }
+
+  private:
+    benchmark::BenchmarkReporter* display_;  // owned by the benchmark library
+    std::map<std::string, double> medians_ns_;
+};
+
+std::string summary(const MedianRecorder& recorder) {
+    std::ostringstream out;
+    out << std::fixed << std::setprecision(0);
+    out << "| call | case | without layer (ns) | with layer (ns) | overhead_ns |\n"
+        << "|---|---|---:|---:|---:|\n";
+    for (const Comparison& c : kComparisons) {
+        const std::optional<double> without = recorder.median_ns(c.without_layer);
+        const std::optional<double> with = recorder.median_ns(c.with_layer);
+        if (!without || !with) continue;  // filtered out, or skipped with an error
+        out << "| " << c.call << " | " << c.what << " | " << *without << " | " << *with << " | "
+            << std::showpos << *with - *without << std::noshowpos << " |\n";
+    }
+    return out.str();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    benchmark::Initialize(&argc, argv);
+    std::optional<std::string> summary_file;
+    if (argc == 3 && std::strcmp(argv[1], "--summary") == 0) {
+        summary_file = argv[2];
+        argc = 1;
+    }
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+    for (const Benchmark& b : kBenchmarks) {
+        benchmark::RegisterBenchmark(b.name, b.run, b.path)->Unit(benchmark::kNanosecond);
+    }
+    MedianRecorder recorder(benchmark::CreateDefaultDisplayReporter());
+    benchmark::RunSpecifiedBenchmarks(&recorder);
+    benchmark::Shutdown();
+
+    const std::string table = summary(recorder);
+    if (!summary_file) {
+        std::cout << '\n' << table;
+    } else if (!(std::ofstream(*summary_file) << table)) {
+        std::fprintf(stderr, "physhand-overhead: cannot write %s\n", summary_file->c_str());
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,81 @@
+// The sample app, headless, through loader -> layer -> simulated runtime, against the
+// physics-only runner on the same scene: the same outcome and the same final bodies.
+
+#include <cstdio>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "layer_fixture.h"
+
+namespace physhand::layer_test {
+namespace {
+
+struct Output {
+    int status = -1;
+    std::string text;
+};
+
+Output run_command(const std::string& command) {
+    Output out;
+    FILE* pipe = popen(command.c_str(), "r");
+    if (pipe == nullptr) return out;
+    char buffer[4096];
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0;) {
+        out.text.append(buffer, n);
+    }
+    out.status = pclose(pipe);
+    return out;
+}
+
+// The one JSON object the tool printed (core validation may print a line of its own).
+nlohmann::json result_of(const Output& output) {
+    std::istringstream lines(output.text);
+    for (std::string line; std::getline(lines, line);) {
+        if (!line.empty() && line.front() == '{') return nlohmann::json::parse(line);
+    }
+    return nullptr;
+}
+
+std::string quoted(const std::string& text) {
+    return "'" + text + "'";
+}
+
+using SampleApp = LayerTest;
+
+TEST_F(SampleApp, HeadlessPlayerMatchesThePhysicsRunner) {
+    const std::string scene = std::string(PHYSHAND_SCENES_DIR) + "/lift_hold.json";
+    const Output physics =
+        run_command(quoted(PHYSHAND_SCENE_EXE) + " " + quoted(scene) + " --json");
+    ASSERT_EQ(physics.status, 0) << physics.text;
+    // The sample plays the scene it is given: no PHYSHAND_SIM_SCENE of ours.
+    const Output layer =
+        run_command(quoted(PHYSHAND_SAMPLE_EXE) + " --headless " + quoted(scene) + " --json");
+    ASSERT_EQ(layer.status, 0) << layer.text;
+
+    const nlohmann::json expected = result_of(physics);
+    const nlohmann::json got = result_of(layer);
+    ASSERT_TRUE(expected.is_object()) << physics.text;
+    ASSERT_TRUE(got.is_object()) << layer.text;
+    EXPECT_EQ(expected.value("path", ""), "physics");
+    EXPECT_EQ(got.value("path", ""), "layer");
+    EXPECT_EQ(got.at("scene"), expected.at("scene"));
+    EXPECT_EQ(got.at("success"), expected.at("success"));
+    EXPECT_EQ(got.value("nonfinite_count", -1), 0);
+
+    const nlohmann::json& bodies = expected.at("bodies");
+    ASSERT_EQ(got.at("bodies").size(), bodies.size());
+    ASSERT_FALSE(bodies.empty());
+    for (const auto& [id, body] : bodies.items()) {
+        SCOPED_TRACE(id);
+        ASSERT_TRUE(got.at("bodies").contains(id));
+        const auto& a = got.at("bodies").at(id).at("position");
+        const auto& b = body.at("position");
+        const XrVector3f pa = {a[0].get<float>(), a[1].get<float>(), a[2].get<float>()};
+        const XrVector3f pb = {b[0].get<float>(), b[1].get<float>(), b[2].get<float>()};
+        EXPECT_LT(distance(pa, pb), 0.001);
+    }
+}
+
+}  // namespace
+}  // namespace physhand::layer_test
