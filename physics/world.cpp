@@ -22,6 +22,23 @@ BodyRole role_of(const btCollisionObject* o) {
     return static_cast<BodyRole>(o->getUserIndex());
 }
 
+// Scales a body's speeds down to the limits, a non-finite one to zero; true when its
+// linear speed was over.
+bool clamp_speeds(btRigidBody& body, double max_speed) {
+    const btScalar w = body.getAngularVelocity().length();
+    if (!std::isfinite(w) || w > kMaxAngularSpeed) {
+        body.setAngularVelocity(std::isfinite(w) ? body.getAngularVelocity() *
+                                                       static_cast<btScalar>(kMaxAngularSpeed / w)
+                                                 : btVector3(0, 0, 0));
+    }
+    const btScalar v = body.getLinearVelocity().length();
+    if (std::isfinite(v) && v <= max_speed) return false;
+    body.setLinearVelocity(std::isfinite(v)
+                               ? body.getLinearVelocity() * static_cast<btScalar>(max_speed / v)
+                               : btVector3(0, 0, 0));
+    return true;
+}
+
 }  // namespace
 
 struct World::Entry {
@@ -137,6 +154,9 @@ bool World::teleport(ColliderHandle handle, const Pose& pose, const Vec3& linear
     if (e->collider.motion == Motion::Dynamic) {
         body->setLinearVelocity(to_bt(linear_velocity));
         body->setAngularVelocity(to_bt(angular_velocity));
+        // At once: finite but huge velocities (in float) would otherwise turn the first
+        // step's state into NaN (found by fuzzing the extension, tests/fuzz).
+        clamp_speeds(*body, settings_.max_body_speed);
         body->activate(true);
     }
     e->kinematic_from = e->kinematic_to = pose;
@@ -216,22 +236,7 @@ int World::clamp_collider_speeds() {
     int clamped = 0;
     for (auto& [handle, e] : colliders_) {
         if (e->collider.motion != Motion::Dynamic || !e->body->isActive()) continue;
-        btRigidBody* body = e->body.get();
-        const btScalar v = body->getLinearVelocity().length();
-        if (!std::isfinite(v) || v > settings_.max_body_speed) {
-            body->setLinearVelocity(std::isfinite(v)
-                                        ? body->getLinearVelocity() *
-                                              static_cast<btScalar>(settings_.max_body_speed / v)
-                                        : btVector3(0, 0, 0));
-            ++clamped;
-        }
-        const btScalar w = body->getAngularVelocity().length();
-        if (!std::isfinite(w) || w > kMaxAngularSpeed) {
-            body->setAngularVelocity(std::isfinite(w)
-                                         ? body->getAngularVelocity() *
-                                               static_cast<btScalar>(kMaxAngularSpeed / w)
-                                         : btVector3(0, 0, 0));
-        }
+        if (clamp_speeds(*e->body, settings_.max_body_speed)) ++clamped;
     }
     return clamped;
 }
