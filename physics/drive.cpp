@@ -31,7 +31,7 @@ Vec3 implicit_velocity(const Vec3& error, const Vec3& velocity, const Vec3& targ
 const std::vector<DriveSettings>& builtin_drives() {
     // Gains of the implicit drives come from the sweep in BENCHMARKS.md.
     static const std::vector<DriveSettings> drives = {
-        {"bones", BodyModel::BoneCapsules, DriveLaw::Implicit, 20000.0, 90.0, true, 20.0, 2},
+        {"bones", BodyModel::BoneCapsules, DriveLaw::Implicit, 20000.0, 90.0, true, 20.0, 1},
         {"implicit", BodyModel::JointSpheres, DriveLaw::Implicit, 20000.0, 90.0, false, 20.0, 2},
         {"paper", BodyModel::JointSpheres, DriveLaw::Explicit, 1000.0, 20.0, false, 0.0, 4},
     };

@@ -2,6 +2,7 @@
 // the measurement scenes and writes a CSV, one SVG plot per scene and the Markdown report.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -41,7 +42,10 @@ struct Row {
     bool success = false;
     double error() const;
     std::string metric;
-    bool usable() const { return success && m.nonfinite_count == 0; }
+    std::uint64_t speed_clamps = 0;
+    // Stable: the scene succeeded, every value stayed finite and no body ever reached the
+    // speed limit (where the guard clamps an exploding hand).
+    bool usable() const { return success && m.nonfinite_count == 0 && speed_clamps == 0; }
 };
 
 double Row::error() const {
@@ -64,6 +68,7 @@ Row measure(const Scene& scene, const SceneAxis& axis, const std::string& drive,
         p99s.push_back(r.metrics.step_us_p99);
         row.m = r.metrics;
         row.success = r.success;
+        row.speed_clamps = r.guards.speed_clamps;
         for (const PredicateResult& p : r.predicates) {
             if (p.slip_mm) row.slip_mm = *p.slip_mm;
         }
@@ -95,10 +100,55 @@ std::string fmt(double v, int digits = 3) {
     return buf;
 }
 
+// One line for the report: is the default (rows[d]) on the front, how it compares with
+// paper at its own substep count, and with every stable paper configuration.
+std::string verdict(const std::vector<Row>& rows, const std::vector<bool>& front, std::size_t d) {
+    const Row& me = rows[d];
+    std::ostringstream v;
+    v << "- " << me.scene << ": the default (" << me.drive << ", " << me.substeps << " substep"
+      << (me.substeps == 1 ? "" : "s") << ", " << fmt(me.m.step_us_median, 0) << " µs, "
+      << me.metric << " " << fmt(me.error()) << ")"
+      << (!me.usable() ? " FAILED"
+          : front[d]   ? " is on the Pareto front"
+                       : " is NOT on the Pareto front");
+    auto ahead = [&](const Row& p) {
+        return me.usable() && me.m.step_us_median < p.m.step_us_median && me.error() <= p.error();
+    };
+    auto describe = [&](const Row& p) {
+        std::ostringstream o;
+        o << "paper/" << p.substeps << " (" << fmt(p.m.step_us_median, 0) << " µs, "
+          << fmt(p.error()) << ")";
+        return o.str();
+    };
+    int stable = 0, beaten = 0;
+    std::vector<std::string> not_beaten;
+    for (const Row& p : rows) {
+        if (p.drive != "paper") continue;
+        if (p.substeps == me.substeps) {
+            v << "; paper at " << p.substeps << " substep" << (p.substeps == 1 ? "" : "s") << ": "
+              << (!p.usable() ? "unstable"
+                  : ahead(p)  ? "behind on both axes, " + describe(p)
+                              : "NOT behind on both axes, " + describe(p));
+        }
+        if (!p.usable()) continue;
+        ++stable;
+        if (ahead(p))
+            ++beaten;
+        else
+            not_beaten.push_back(describe(p));
+    }
+    v << "; ahead of " << beaten << " of " << stable << " stable paper configurations";
+    for (std::size_t i = 0; i < not_beaten.size(); ++i)
+        v << (i == 0 ? " (not of " : ", ") << not_beaten[i];
+    v << (not_beaten.empty() ? "." : ").");
+    return v.str();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    const auto options = bench::parse_options(argc, argv, "physhand-sweep", PHYSHAND_SCENES_DIR);
+    const auto options =
+        bench::parse_options(argc, argv, "physhand-sweep", PHYSHAND_SCENES_DIR, true);
     if (!options) return 2;
     const fs::path& out = options->out;
     const fs::path& scenes_dir = options->scenes_dir;
@@ -107,21 +157,25 @@ int main(int argc, char** argv) {
     csv << "scene,drive,substeps,step_us_median,step_us_p99,tracking_error_rms_mm,tracking_error_"
            "p99_mm,"
            "max_penetration_mm,slip_mm,jitter_mm,ghost_jitter_mm,max_body_speed,nonfinite_count,"
-           "success\n";
+           "success,speed_clamps\n";
     std::ostringstream md;
     const DriveSettings& chosen = default_drive();
     std::vector<std::string> verdicts;
     for (const SceneAxis& axis : kScenes) {
+        if (!bench::selected(options->only_scenes, axis.scene)) continue;
         const Scene scene = load_scene(scenes_dir / (axis.scene + ".json"));
         std::vector<Row> rows;
         for (const DriveSettings& d : builtin_drives()) {
-            for (int n : kSubsteps) rows.push_back(measure(scene, axis, d.name, n, repeat));
+            if (!bench::selected(options->only_drives, d.name)) continue;
+            for (int n : options->only_substeps.empty() ? kSubsteps : options->only_substeps)
+                rows.push_back(measure(scene, axis, d.name, n, repeat));
         }
         const std::vector<bool> front = pareto(rows);
         md << "\n### " << axis.scene << " (error: " << axis.metric << ")\n\n![" << axis.scene
            << "](bench/" << axis.scene << ".svg)\n\n| drive | substeps | step_us median | p99 | "
            << axis.metric
-           << " | success | nonfinite | Pareto |\n|---|---|---|---|---|---|---|---|\n";
+           << " | success | nonfinite | speed clamps | Pareto "
+              "|\n|---|---|---|---|---|---|---|---|---|\n";
         SvgPlot plot(axis.scene + ": run time against error", "step_us median (µs per 90 Hz frame)",
                      axis.metric);
         std::map<std::string, std::vector<std::size_t>> by_drive;
@@ -132,11 +186,12 @@ int main(int argc, char** argv) {
                 << r.m.tracking_error_p99_mm << ',' << r.m.max_penetration_mm << ','
                 << (std::isnan(r.slip_mm) ? std::string() : std::to_string(r.slip_mm)) << ','
                 << r.m.jitter_mm << ',' << r.m.ghost_jitter_mm << ',' << r.m.max_body_speed << ','
-                << r.m.nonfinite_count << ',' << (r.success ? "true" : "false") << '\n';
+                << r.m.nonfinite_count << ',' << (r.success ? "true" : "false") << ','
+                << r.speed_clamps << '\n';
             md << "| " << r.drive << " | " << r.substeps << " | " << fmt(r.m.step_us_median, 0)
                << " | " << fmt(r.m.step_us_p99, 0) << " | " << fmt(r.error()) << " | "
                << (r.success ? "yes" : "**no**") << " | " << r.m.nonfinite_count << " | "
-               << (front[i] ? "●" : "") << " |\n";
+               << r.speed_clamps << " | " << (front[i] ? "●" : "") << " |\n";
             by_drive[r.drive].push_back(i);
         }
         for (const auto& [drive, idx] : by_drive) {
@@ -150,21 +205,8 @@ int main(int argc, char** argv) {
         std::ofstream(out / (axis.scene + ".svg")) << plot.render();
 
         for (std::size_t i = 0; i < rows.size(); ++i) {
-            if (rows[i].drive != chosen.name || rows[i].substeps != chosen.substeps) continue;
-            std::string v = "- " + axis.scene + ": default (" + chosen.name + ", " +
-                            std::to_string(chosen.substeps) + " substeps) " +
-                            (front[i] ? "is on the Pareto front" : "is NOT on the Pareto front");
-            // Against every stable paper configuration: faster and more accurate?
-            int beaten = 0, stable = 0;
-            for (const Row& p : rows) {
-                if (p.drive != "paper" || !p.usable()) continue;
-                ++stable;
-                beaten +=
-                    rows[i].m.step_us_median < p.m.step_us_median && rows[i].error() <= p.error();
-            }
-            v += "; ahead of paper on both axes against " + std::to_string(beaten) + " of its " +
-                 std::to_string(stable) + " usable configurations.";
-            verdicts.push_back(v);
+            if (rows[i].drive == chosen.name && rows[i].substeps == chosen.substeps)
+                verdicts.push_back(verdict(rows, front, i));
         }
     }
     std::ofstream report(out / "sweep.md");
