@@ -75,15 +75,19 @@ PathologyResult run_pathology(const DriveSettings& drive, std::uint64_t seed) {
     for (int frame = 1; frame <= kRecoveryFrames; ++frame) {
         b.sim.step_to(t + frame / 90.0, {HandPose{}, clean});
         observe();
-        // As tracking error is measured (METRICS.md): joints held by contact (the fingers
-        // may have closed round the cube) are where they must be; the wrist always counts.
+        // As tracking error is measured (METRICS.md): joints held by contact (the hand may
+        // have closed round the cube, or trapped it between joint spheres) are where they
+        // must be. A hand with every joint in contact has not recovered.
         const PhysicalHandState& hand = b.sim.hand(HandSide::Right);
         double worst = 0.0;
+        int free_joints = 0;
         for (std::size_t j = 0; j < kJointCount; ++j) {
-            if (hand.in_contact[j] && j != index_of(Joint::Wrist)) continue;
+            if (hand.in_contact[j]) continue;
+            ++free_joints;
             worst =
                 std::max(worst, (hand.joints.joints[j].position - clean.joints[j].position).norm());
         }
+        if (free_joints == 0) continue;
         if (worst < kRecoveredM) {
             result.recovery_s = frame / 90.0;
             break;

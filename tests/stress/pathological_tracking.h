@@ -16,7 +16,7 @@ struct PathologyResult {
     int nonfinite_count = 0;      // frames with a non-finite hand or cube state
     double max_body_speed = 0.0;  // m/s, fastest body in any frame
     double speed_limit = 0.0;     // m/s, the configured limit it must not exceed
-    // Clean tracking until the wrist and every joint not in contact are within kRecoveredM;
+    // Clean tracking until every joint not in contact (some must be) is within kRecoveredM;
     // inf: never.
     double recovery_s = 0.0;
 };
