@@ -45,7 +45,7 @@ struct Row {
     std::uint64_t speed_clamps = 0;
     // Stable: the scene succeeded, every value stayed finite and no body ever reached the
     // speed limit (where the guard clamps an exploding hand).
-    bool usable() const { return success && m.nonfinite_count == 0 && speed_clamps == 0; }
+    bool stable() const { return success && m.nonfinite_count == 0 && speed_clamps == 0; }
 };
 
 double Row::error() const {
@@ -79,13 +79,13 @@ Row measure(const Scene& scene, const SceneAxis& axis, const std::string& drive,
     return row;
 }
 
-// Points no other usable point beats on both time and error.
+// Points no other stable point beats on both time and error.
 std::vector<bool> pareto(const std::vector<Row>& rows) {
     std::vector<bool> front(rows.size(), false);
     for (std::size_t i = 0; i < rows.size(); ++i) {
-        if (!rows[i].usable()) continue;
+        if (!rows[i].stable()) continue;
         front[i] = std::none_of(rows.begin(), rows.end(), [&](const Row& o) {
-            return o.usable() && o.m.step_us_median <= rows[i].m.step_us_median &&
+            return o.stable() && o.m.step_us_median <= rows[i].m.step_us_median &&
                    o.error() <= rows[i].error() &&
                    (o.m.step_us_median < rows[i].m.step_us_median || o.error() < rows[i].error());
         });
@@ -108,11 +108,11 @@ std::string verdict(const std::vector<Row>& rows, const std::vector<bool>& front
     v << "- " << me.scene << ": the default (" << me.drive << ", " << me.substeps << " substep"
       << (me.substeps == 1 ? "" : "s") << ", " << fmt(me.m.step_us_median, 0) << " µs, "
       << me.metric << " " << fmt(me.error()) << ")"
-      << (!me.usable() ? " FAILED"
+      << (!me.stable() ? " FAILED"
           : front[d]   ? " is on the Pareto front"
                        : " is NOT on the Pareto front");
     auto ahead = [&](const Row& p) {
-        return me.usable() && me.m.step_us_median < p.m.step_us_median && me.error() <= p.error();
+        return me.stable() && me.m.step_us_median < p.m.step_us_median && me.error() <= p.error();
     };
     auto describe = [&](const Row& p) {
         std::ostringstream o;
@@ -126,11 +126,11 @@ std::string verdict(const std::vector<Row>& rows, const std::vector<bool>& front
         if (p.drive != "paper") continue;
         if (p.substeps == me.substeps) {
             v << "; paper at " << p.substeps << " substep" << (p.substeps == 1 ? "" : "s") << ": "
-              << (!p.usable() ? "unstable"
+              << (!p.stable() ? "unstable"
                   : ahead(p)  ? "behind on both axes, " + describe(p)
                               : "NOT behind on both axes, " + describe(p));
         }
-        if (!p.usable()) continue;
+        if (!p.stable()) continue;
         ++stable;
         if (ahead(p))
             ++beaten;
@@ -198,7 +198,7 @@ int main(int argc, char** argv) {
             std::vector<SvgPlot::Point> pts;
             for (std::size_t i : idx) {
                 pts.push_back({rows[i].m.step_us_median, rows[i].error(),
-                               std::to_string(rows[i].substeps), front[i], !rows[i].usable()});
+                               std::to_string(rows[i].substeps), front[i], !rows[i].stable()});
             }
             plot.add_series(drive, pts);
         }
