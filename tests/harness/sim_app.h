@@ -26,10 +26,10 @@ T xr(XrStructureType type) {
 void check(XrResult result, const char* call);
 
 struct SimAppOptions {
-    bool layer = true;             // false: the implicit layer is disabled, as a user would do it
-    bool extension = false;        // enable XR_PHYSHAND_physical_hands (only the layer provides it)
-    std::filesystem::path scene;   // the scene whose hands the runtime plays
-    std::filesystem::path config;  // the layer's config file; empty: none (its defaults)
+    bool layer = true;            // false: the implicit layer is disabled, as a user would do it
+    bool extension = false;       // enable XR_PHYSHAND_physical_hands (only the layer provides it)
+    std::filesystem::path scene;  // the scene whose hands the runtime plays
+    std::filesystem::path config{};  // the layer's config file; empty: none (its defaults)
     // A Vulkan session (XR_KHR_vulkan_enable2) that shows a projection layer each frame, on
     // the system's Vulkan device (lavapipe where VK_ICD_FILENAMES says so); else headless.
     bool vulkan = false;
