@@ -14,10 +14,10 @@ namespace {
 
 // When the layer hands out its own entry point instead of the next layer's.
 enum class Scope {
-    Always,     // bookkeeping the layer needs even when the config turned it off
-    Enabled,    // the layer is on and the chain below provides the function
-    Extension,  // the layer is on and the app enabled XR_PHYSHAND_physical_hands
-    Overlay,    // the layer and its overlay are on
+    Always,        // bookkeeping the layer needs even when the config turned it off
+    Enabled,       // the layer is on and the chain below provides the function
+    Extension,     // the layer is on and the app enabled XR_PHYSHAND_physical_hands
+    HandTracking,  // the layer is on and the app enabled XR_EXT_hand_tracking
 };
 
 struct Intercept {
@@ -37,10 +37,10 @@ const Intercept* find_intercept(const char* name) {
         {"xrDestroyInstance", to_void(&DestroyInstance), Scope::Always},
         {"xrCreateSession", to_void(&CreateSession), Scope::Enabled},
         {"xrDestroySession", to_void(&DestroySession), Scope::Enabled},
-        {"xrEndFrame", to_void(&EndFrame), Scope::Overlay},
-        {"xrCreateHandTrackerEXT", to_void(&CreateHandTrackerEXT), Scope::Enabled},
-        {"xrDestroyHandTrackerEXT", to_void(&DestroyHandTrackerEXT), Scope::Enabled},
-        {"xrLocateHandJointsEXT", to_void(&LocateHandJointsEXT), Scope::Enabled},
+        {"xrEndFrame", to_void(&EndFrame), Scope::Enabled},
+        {"xrCreateHandTrackerEXT", to_void(&CreateHandTrackerEXT), Scope::HandTracking},
+        {"xrDestroyHandTrackerEXT", to_void(&DestroyHandTrackerEXT), Scope::HandTracking},
+        {"xrLocateHandJointsEXT", to_void(&LocateHandJointsEXT), Scope::HandTracking},
         {"xrCreatePhysicalColliderPHYSHAND", to_void(&CreatePhysicalColliderPHYSHAND),
          Scope::Extension},
         {"xrDestroyPhysicalColliderPHYSHAND", to_void(&DestroyPhysicalColliderPHYSHAND),
@@ -108,16 +108,25 @@ XRAPI_ATTR XrResult XRAPI_CALL GetInstanceProcAddr(XrInstance instance, const ch
         }
         const Intercept* intercept = find_intercept(name);
         // Everything the layer does not need is the next layer's own pointer: zero overhead.
-        if (intercept == nullptr || (!state->config.enabled && intercept->scope != Scope::Always) ||
-            (intercept->scope == Scope::Overlay && !state->config.overlay)) {
+        if (intercept == nullptr || (!state->config.enabled && intercept->scope != Scope::Always)) {
             return state->next.GetInstanceProcAddr(instance, name, function);
         }
-        if (intercept->scope == Scope::Extension) {
-            *function = state->extension_enabled ? intercept->function : nullptr;
-            return state->extension_enabled ? XR_SUCCESS : XR_ERROR_FUNCTION_UNSUPPORTED;
+        // An extension's functions exist for the app only when it enabled the extension,
+        // whatever the layer enabled down the chain for itself.
+        const bool app_enabled = intercept->scope == Scope::Extension ? state->extension_enabled
+                                 : intercept->scope == Scope::HandTracking
+                                     ? state->app_hand_tracking
+                                     : true;
+        if (!app_enabled) {
+            *function = nullptr;
+            return XR_ERROR_FUNCTION_UNSUPPORTED;
         }
-        // Only replace what the chain provides: hand tracking exists only when the app
-        // enabled it, and the answer for a function it lacks must stay the chain's.
+        if (intercept->scope == Scope::Extension) {
+            *function = intercept->function;
+            return XR_SUCCESS;
+        }
+        // Only replace what the chain provides: the answer for a function it lacks (hand
+        // tracking on a runtime without it) must stay the chain's.
         const XrResult result = state->next.GetInstanceProcAddr(instance, name, function);
         if (XR_SUCCEEDED(result) && *function != nullptr) *function = intercept->function;
         return result;

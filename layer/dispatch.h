@@ -10,8 +10,8 @@ namespace physhand::layer {
 inline constexpr const char* kLayerName = "XR_APILAYER_PHYSHAND_physical_hands";
 
 // What the layer calls down the chain. Filled once per instance from the next layer's
-// xrGetInstanceProcAddr; the hand-tracking functions are null unless the app enabled
-// XR_EXT_hand_tracking (then none of the layer's hand-tracking entry points is handed out).
+// xrGetInstanceProcAddr; the hand-tracking functions are null unless XR_EXT_hand_tracking
+// is enabled down the chain (by the app, or by the layer for its own trackers).
 struct NextDispatch {
     PFN_xrGetInstanceProcAddr GetInstanceProcAddr = nullptr;
     PFN_xrDestroyInstance DestroyInstance = nullptr;

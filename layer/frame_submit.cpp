@@ -8,7 +8,8 @@
 #include "sessions.h"
 #include "xr_util.h"
 
-// xrEndFrame: the overlay of the hands is composited over the app's layers.
+// xrEndFrame: the simulation steps to the frame's time, and the overlay of the hands is
+// composited over the app's layers.
 namespace physhand::layer {
 
 namespace {
@@ -34,8 +35,8 @@ const XrCompositionLayerProjection* find_projection(const XrFrameEndInfo& info) 
     return nullptr;
 }
 
-// The overlay layer for this frame, or null when there is nothing to draw or no room for
-// it. Session locked. Throws on any failure.
+// The overlay layer for this frame (the simulation already stepped to its time), or null
+// when there is nothing to draw or no room for it. Session locked. Throws on any failure.
 const XrCompositionLayerProjection* draw_overlay(SessionState& state, const XrFrameEndInfo& info) {
     if (info.layerCount >= state.max_layer_count || info.displayTime <= 0 || !state.simulation ||
         (info.layerCount > 0 && info.layers == nullptr)) {
@@ -43,7 +44,6 @@ const XrCompositionLayerProjection* draw_overlay(SessionState& state, const XrFr
     }
     const XrCompositionLayerProjection* app_layer = find_projection(info);
     if (app_layer == nullptr) return nullptr;
-    state.advance(info.displayTime);
 
     std::array<overlay::Hand, 2> hands;
     bool any_active = false;
@@ -104,6 +104,17 @@ void append_overlay(SessionState& state, const XrFrameEndInfo& info, XrFrameEndI
     }
 }
 
+// The app's frame goes through whatever happens to the layer's step.
+void step_frame(SessionState& state, XrTime display_time) noexcept {
+    try {
+        state.step_frame(display_time);
+    } catch (const std::exception& e) {
+        log_failure("xrEndFrame (the frame's step)", e.what());
+    } catch (...) {
+        log_failure("xrEndFrame (the frame's step)", "unknown exception");
+    }
+}
+
 }  // namespace
 
 XRAPI_ATTR XrResult XRAPI_CALL EndFrame(XrSession session, const XrFrameEndInfo* frameEndInfo) {
@@ -114,7 +125,10 @@ XRAPI_ATTR XrResult XRAPI_CALL EndFrame(XrSession session, const XrFrameEndInfo*
         XrFrameEndInfo submitted = *frameEndInfo;
         {
             std::lock_guard lock(state->mutex);
-            if (state->alive && state->vulkan) append_overlay(*state, *frameEndInfo, submitted);
+            if (state->alive) {
+                step_frame(*state, frameEndInfo->displayTime);
+                if (state->vulkan) append_overlay(*state, *frameEndInfo, submitted);
+            }
         }
         // Unlocked: the runtime may block here, and other threads may locate hands meanwhile.
         // The app synchronises xrEndFrame with xrDestroySession, so the layers stay alive.

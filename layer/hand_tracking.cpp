@@ -195,9 +195,12 @@ void SessionState::advance(XrTime time) {
     ghosts = {};
     for (const HandSide side : kHandSides) {
         const std::vector<XrHandTrackerEXT>& side_trackers = trackers[side_index(side)];
-        if (side_trackers.empty()) continue;  // never tracked: stays inactive
+        // The app's own tracker first, so that its results never depend on the layer's.
+        const XrHandTrackerEXT tracker =
+            side_trackers.empty() ? own_trackers[side_index(side)] : side_trackers.front();
+        if (tracker == XR_NULL_HANDLE) continue;  // never tracked: stays inactive
         // Sampled at the stepped-to time for both hands, whichever hand the app asked for.
-        const GhostSample sample = sample_ghost(*this, side_trackers.front(), time);
+        const GhostSample sample = sample_ghost(*this, tracker, time);
         ghosts[side_index(side)] = to_hand_pose(sample);
         if (recorder) recorder->write(side, t, sample.joints);
     }

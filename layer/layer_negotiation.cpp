@@ -3,6 +3,7 @@
 
 #include <cstring>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "config.h"
@@ -19,6 +20,10 @@ namespace {
 
 bool is_layer_extension(const char* name) {
     return std::strcmp(name, XR_PHYSHAND_PHYSICAL_HANDS_EXTENSION_NAME) == 0;
+}
+
+bool is_hand_tracking(const char* name) {
+    return name != nullptr && std::strcmp(name, XR_EXT_HAND_TRACKING_EXTENSION_NAME) == 0;
 }
 
 void destroy_instance(XrInstance instance, PFN_xrGetInstanceProcAddr next_gipa) {
@@ -50,21 +55,34 @@ XRAPI_ATTR XrResult XRAPI_CALL CreateApiLayerInstance(const XrInstanceCreateInfo
         // below would refuse the one only this layer provides.
         std::vector<const char*> extensions;
         bool extension_enabled = false;
+        bool app_hand_tracking = false;
         for (std::uint32_t i = 0; i < info->enabledExtensionCount; ++i) {
             const char* name = info->enabledExtensionNames[i];
             if (name != nullptr && is_layer_extension(name)) {
                 extension_enabled = true;
             } else {
+                app_hand_tracking = app_hand_tracking || is_hand_tracking(name);
                 extensions.push_back(name);
             }
         }
+        Config config = load_config();
         XrInstanceCreateInfo down_info = *info;
-        down_info.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
-        down_info.enabledExtensionNames = extensions.data();
         XrApiLayerCreateInfo down_layer_info = *layerInfo;
         down_layer_info.nextInfo = next->next;
-        const XrResult result =
-            next->nextCreateApiLayerInstance(&down_info, &down_layer_info, instance);
+        const auto create_down = [&] {
+            down_info.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
+            down_info.enabledExtensionNames = extensions.data();
+            return next->nextCreateApiLayerInstance(&down_info, &down_layer_info, instance);
+        };
+        XrResult result = XR_ERROR_EXTENSION_NOT_PRESENT;
+        // Hand tracking for the layer's own trackers, in apps that do not track hands. A
+        // runtime without it refuses the list: then the app's own list, as it asked.
+        if (config.enabled && !app_hand_tracking) {
+            extensions.push_back(XR_EXT_HAND_TRACKING_EXTENSION_NAME);
+            result = create_down();
+            extensions.pop_back();
+        }
+        if (result == XR_ERROR_EXTENSION_NOT_PRESENT) result = create_down();
         if (XR_FAILED(result)) return result;
 
         try {
@@ -72,7 +90,8 @@ XRAPI_ATTR XrResult XRAPI_CALL CreateApiLayerInstance(const XrInstanceCreateInfo
             state->instance = *instance;
             state->next = make_next_dispatch(*instance, next->nextGetInstanceProcAddr);
             state->extension_enabled = extension_enabled;
-            state->config = load_config();
+            state->app_hand_tracking = app_hand_tracking;
+            state->config = std::move(config);
             add_instance(std::move(state));
         } catch (const std::exception& e) {
             log_failure("xrCreateApiLayerInstance", e.what());

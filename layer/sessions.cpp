@@ -74,6 +74,27 @@ XrSpace create_frame(const NextDispatch& next, XrSession session, XrReferenceSpa
     return XR_NULL_HANDLE;
 }
 
+// What the session needs to know of its system: room for one more composition layer (the
+// overlay's), and whether it tracks hands (the layer's own trackers). A failure leaves
+// both unknown, which turns the overlay and the layer's own trackers off.
+void read_system(SessionState& state, XrSystemId system) {
+    XrSystemHandTrackingPropertiesEXT hand_tracking{};
+    hand_tracking.type = XR_TYPE_SYSTEM_HAND_TRACKING_PROPERTIES_EXT;
+    XrSystemProperties properties{};
+    properties.type = XR_TYPE_SYSTEM_PROPERTIES;
+    // Chained only where the extension is enabled down the chain.
+    if (state.instance->next.CreateHandTrackerEXT != nullptr) properties.next = &hand_tracking;
+    const XrResult result =
+        state.instance->next.GetSystemProperties(state.instance->instance, system, &properties);
+    if (XR_FAILED(result)) {
+        log_once("xrCreateSession: xrGetSystemProperties failed with XrResult " +
+                 std::to_string(result) + "; no overlay and no hand tracking of the layer's own");
+        return;
+    }
+    state.max_layer_count = properties.graphicsProperties.maxLayerCount;
+    state.hand_tracking = properties.next != nullptr && hand_tracking.supportsHandTracking;
+}
+
 // The overlay needs the app's Vulkan objects and room for one more composition layer.
 // Without them the session runs unchanged, without the overlay.
 void set_up_overlay(SessionState& state, const XrSessionCreateInfo& info) {
@@ -83,15 +104,9 @@ void set_up_overlay(SessionState& state, const XrSessionCreateInfo& info) {
             log_once("xrCreateSession: not a Vulkan session; the hands are not drawn");
             return;
         }
-        XrSystemProperties properties{};
-        properties.type = XR_TYPE_SYSTEM_PROPERTIES;
-        const XrResult result = state.instance->next.GetSystemProperties(
-            state.instance->instance, info.systemId, &properties);
-        if (XR_FAILED(result)) {
-            throw std::runtime_error("xrGetSystemProperties failed with XrResult " +
-                                     std::to_string(result));
+        if (state.max_layer_count == 0) {
+            throw std::runtime_error("the system's composition layer count is unknown");
         }
-        state.max_layer_count = properties.graphicsProperties.maxLayerCount;
     } catch (const std::exception& e) {
         state.vulkan.reset();
         log_failure("xrCreateSession (the hands are not drawn)", e.what());
@@ -253,6 +268,7 @@ XRAPI_ATTR XrResult XRAPI_CALL CreateSession(XrInstance instance,
         if (XR_FAILED(result)) return result;
         try {
             std::shared_ptr<SessionState> session_state = make_session_state(state, *session);
+            read_system(*session_state, createInfo->systemId);
             if (state->config.overlay) set_up_overlay(*session_state, *createInfo);
             add_session(std::move(session_state));
         } catch (...) {
@@ -277,6 +293,7 @@ XRAPI_ATTR XrResult XRAPI_CALL DestroySession(XrSession session) {
             // Freed now, not when the last concurrent caller lets go of the state.
             // Before the session: the overlay's swapchain belongs to it.
             state->overlay.reset();
+            state->destroy_own_trackers();
             state->simulation.reset();
             state->colliders.clear();
             state->recorder.reset();

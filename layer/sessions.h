@@ -26,6 +26,10 @@ struct InstanceState {
     XrInstance instance = XR_NULL_HANDLE;
     NextDispatch next;
     bool extension_enabled = false;  // the app enabled XR_PHYSHAND_physical_hands
+    // The app enabled XR_EXT_hand_tracking itself. When it did not, the layer may have
+    // enabled it down the chain for its own trackers (next.LocateHandJointsEXT is then
+    // set), but the app still cannot get its functions.
+    bool app_hand_tracking = false;
     Config config;
 };
 
@@ -54,6 +58,11 @@ class SessionState {
     std::unique_ptr<Simulation> simulation;
     std::array<std::vector<XrHandTrackerEXT>, 2> trackers;  // by HandSide; the first one
                                                             // feeds the simulation
+    // The system supports XR_EXT_hand_tracking and it is enabled down the chain.
+    bool hand_tracking = false;
+    // The layer's own tracker of a hand the app tracks with none, made by step_frame and
+    // never seen by the app; it feeds the simulation while the app has none of that hand.
+    std::array<XrHandTrackerEXT, 2> own_trackers{};
     std::unordered_map<XrPhysicalColliderPHYSHAND, ColliderRecord> colliders;
     std::unique_ptr<Recorder> recorder;  // null unless PHYSHAND_RECORD is set
     std::optional<XrTime> epoch;         // the XrTime of simulation time 0
@@ -80,6 +89,12 @@ class SessionState {
     // Advances the simulation to `time`, with both hands sampled from the runtime at that
     // time; does nothing for a time at or before the simulation's (hand_tracking.cpp).
     void advance(XrTime time);
+    // The once-per-frame step at xrEndFrame, for apps that locate no hands: when the frame
+    // has something to show (an overlay, or colliders), creates the layer's own trackers
+    // where needed and advances to `display_time` (frame_step.cpp).
+    void step_frame(XrTime display_time);
+    // Destroys the layer's own trackers (frame_step.cpp).
+    void destroy_own_trackers() noexcept;
 
   private:
     XrResult locate(XrSpace space, XrSpace base, XrTime time, Pose& pose,

@@ -88,11 +88,11 @@ uint32_t append_hand(const Frame& frame, const HandLayer& layer,
     const auto hidden = [&](int j) {
         return layer.hidden_by != nullptr && same(joints, *layer.hidden_by, j);
     };
+    const auto tinted = [&](int j) { return layer.tinted != nullptr && (*layer.tinted)[j]; };
     for (int j = 0; j < kJointCount; ++j) {
         if (usable(joints, j) && !hidden(j)) {
             const auto centre = sphere(joints.positions[j], joints.radii[j]);
-            const bool tinted = layer.tinted != nullptr && (*layer.tinted)[j];
-            out[count++] = {centre, centre, tinted ? layer.tint : layer.color};
+            out[count++] = {centre, centre, tinted(j) ? layer.tint : layer.color};
         }
     }
     const float scale = frame.settings.bone_radius_scale;
@@ -103,8 +103,10 @@ uint32_t append_hand(const Frame& frame, const HandLayer& layer,
             !usable(joints, parent) || (hidden(j) && hidden(parent))) {
             continue;
         }
+        // A bone touches what either of its end joints touches.
         out[count++] = {sphere(joints.positions[parent], scale * joints.radii[parent]),
-                        sphere(joints.positions[j], scale * joints.radii[j]), layer.color};
+                        sphere(joints.positions[j], scale * joints.radii[j]),
+                        tinted(j) || tinted(parent) ? layer.tint : layer.color};
     }
     return count;
 }

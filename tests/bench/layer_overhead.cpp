@@ -10,22 +10,35 @@
 //                          returns the runtime's joints and steps nothing. In contact: the
 //                          scene's hand rests pressed on a static box created through the
 //                          extension, so every call steps the physics.
+//   xrEndFrame             intercepted, in a Vulkan session (on lavapipe unless
+//                          VK_ICD_FILENAMES names another driver) that shows a projection
+//                          layer each frame. With the overlay (the layer's default) each frame
+//                          steps the simulation and draws the hands; without it (the config
+//                          turns it off) the frame passes through. Timed per whole frame
+//                          (xrWaitFrame, xrBeginFrame, the swapchain image's acquire, wait and
+//                          release, xrEndFrame): the layer intercepts only xrEndFrame of these,
+//                          so the difference is its cost.
 //
-// After the runs, a Markdown table of medians (CPU time per call, which another process on
-// the machine disturbs less than wall time) and overhead_ns goes to stdout, or to FILE with
-// --summary FILE. Google Benchmark's flags apply, e.g. --benchmark_repetitions=5 for
-// medians over repetitions, --benchmark_out=F.json --benchmark_out_format=json.
+// After the runs, a Markdown table of medians and overhead_ns goes to stdout, or to FILE with
+// --summary FILE. CPU time per call, which another process on the machine disturbs less
+// than wall time; but wall time for xrEndFrame, as the overlay's drawing runs on lavapipe's
+// own threads (and would on a GPU), which the calling thread's CPU time leaves out. Google
+// Benchmark's flags apply, e.g. --benchmark_repetitions=5 for medians over repetitions,
+// --benchmark_out=F.json --benchmark_out_format=json.
 //
 // Usage: physhand-overhead [--benchmark_...] [--summary FILE]
 
 #include <benchmark/benchmark.h>
 #include <openxr/openxr.h>
 #include <openxr/physhand_physical_hands.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -33,6 +46,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sim_app.h"
@@ -50,12 +64,26 @@ constexpr int kSettleFrames = 135;
 constexpr XrVector3f kBoxHalfExtents = {0.15f, 0.05f, 0.15f};
 constexpr XrVector3f kBoxCentre = {0.0f, 0.95f, -0.35f};
 
-enum class Path { Runtime, LayerGated, LayerContact };
+enum class Path { Runtime, LayerGated, LayerContact, LayerOverlay, LayerNoOverlay };
 
-SimApp make_app(Path path) {
-    return SimApp({.layer = path != Path::Runtime,
-                   .extension = path == Path::LayerContact,
-                   .scene = PHYSHAND_OVERHEAD_SCENE});
+// The layer's config that turns its overlay off, written once.
+std::filesystem::path no_overlay_config() {
+    static const std::filesystem::path path = [] {
+        const auto file = std::filesystem::temp_directory_path() /
+                          ("physhand-overhead-" + std::to_string(::getpid()) + ".json");
+        std::ofstream(file) << R"({"overlay": false})";
+        return file;
+    }();
+    return path;
+}
+
+SimApp make_app(Path path, bool vulkan = false) {
+    return SimApp(
+        {.layer = path != Path::Runtime,
+         .extension = path == Path::LayerContact,
+         .scene = PHYSHAND_OVERHEAD_SCENE,
+         .config = path == Path::LayerNoOverlay ? no_overlay_config() : std::filesystem::path(),
+         .vulkan = vulkan});
 }
 
 void create_box_under_hand(const SimApp& app, XrTime time) {
@@ -163,19 +191,30 @@ void locate_hand(benchmark::State& state, Path path) {
     if (!as_named()) state.SkipWithError("the hand changed from gated or in contact as named");
 }
 
+// One whole frame per iteration, as a Vulkan app renders it.
+void end_frame(benchmark::State& state, Path path) {
+    const SimApp app = make_app(path, true);
+    for (auto _ : state) benchmark::DoNotOptimize(app.frame());
+}
+
 struct Benchmark {
     const char* name;
     void (*run)(benchmark::State&, Path);
     Path path;
 };
 
-constexpr std::array<Benchmark, 5> kBenchmarks = {{
+constexpr std::array<Benchmark, 8> kBenchmarks = {{
     {"xrLocateSpace/without_layer", locate_space, Path::Runtime},
     {"xrLocateSpace/with_layer", locate_space, Path::LayerGated},
     {"xrLocateHandJointsEXT/without_layer", locate_hand, Path::Runtime},
     {"xrLocateHandJointsEXT/with_layer/gated", locate_hand, Path::LayerGated},
     {"xrLocateHandJointsEXT/with_layer/contact", locate_hand, Path::LayerContact},
+    {"xrEndFrame/without_layer", end_frame, Path::Runtime},
+    {"xrEndFrame/with_layer/no_overlay", end_frame, Path::LayerNoOverlay},
+    {"xrEndFrame/with_layer/overlay", end_frame, Path::LayerOverlay},
 }};
+
+enum class Clock { Cpu, Wall };
 
 // The rows of the summary: benchmarks compared by name.
 struct Comparison {
@@ -183,19 +222,24 @@ struct Comparison {
     const char* what;
     const char* without_layer;
     const char* with_layer;
+    Clock clock;
 };
 
-constexpr std::array<Comparison, 3> kComparisons = {{
+constexpr std::array<Comparison, 5> kComparisons = {{
     {"xrLocateSpace", "pass-through (not intercepted)", "xrLocateSpace/without_layer",
-     "xrLocateSpace/with_layer"},
+     "xrLocateSpace/with_layer", Clock::Cpu},
     {"xrLocateHandJointsEXT", "hand gated (no collider near it)",
-     "xrLocateHandJointsEXT/without_layer", "xrLocateHandJointsEXT/with_layer/gated"},
+     "xrLocateHandJointsEXT/without_layer", "xrLocateHandJointsEXT/with_layer/gated", Clock::Cpu},
     {"xrLocateHandJointsEXT", "hand in contact with a static box",
-     "xrLocateHandJointsEXT/without_layer", "xrLocateHandJointsEXT/with_layer/contact"},
+     "xrLocateHandJointsEXT/without_layer", "xrLocateHandJointsEXT/with_layer/contact", Clock::Cpu},
+    {"xrEndFrame", "Vulkan session, overlay off (wall time)", "xrEndFrame/without_layer",
+     "xrEndFrame/with_layer/no_overlay", Clock::Wall},
+    {"xrEndFrame", "Vulkan session, overlay drawing the hand (wall time)",
+     "xrEndFrame/without_layer", "xrEndFrame/with_layer/overlay", Clock::Wall},
 }};
 
 // Passes everything on to the display reporter that --benchmark_format chose, and keeps each
-// benchmark's median CPU time per iteration (its only run's without repetitions).
+// benchmark's median CPU and wall time per iteration (its only run's without repetitions).
 class MedianRecorder : public benchmark::BenchmarkReporter {
   public:
     explicit MedianRecorder(benchmark::BenchmarkReporter* display) : display_(display) {}
@@ -207,20 +251,21 @@ class MedianRecorder : public benchmark::BenchmarkReporter {
             const bool median = run.run_type == Run::RT_Aggregate && run.aggregate_name == "median";
             const bool only_run = run.run_type == Run::RT_Iteration && run.repetitions <= 1;
             if (!run.error_occurred && (median || only_run)) {
-                medians_ns_[run.run_name.function_name] = run.GetAdjustedCPUTime();
+                medians_ns_[{run.run_name.function_name, Clock::Cpu}] = run.GetAdjustedCPUTime();
+                medians_ns_[{run.run_name.function_name, Clock::Wall}] = run.GetAdjustedRealTime();
             }
         }
     }
     void Finalize() override { display_->Finalize(); }
 
-    std::optional<double> median_ns(const std::string& name) const {
-        const auto it = medians_ns_.find(name);
+    std::optional<double> median_ns(const std::string& name, Clock clock) const {
+        const auto it = medians_ns_.find({name, clock});
         return it == medians_ns_.end() ? std::nullopt : std::optional<double>(it->second);
     }
 
   private:
     benchmark::BenchmarkReporter* display_;  // owned by the benchmark library
-    std::map<std::string, double> medians_ns_;
+    std::map<std::pair<std::string, Clock>, double> medians_ns_;
 };
 
 std::string summary(const MedianRecorder& recorder) {
@@ -229,8 +274,8 @@ std::string summary(const MedianRecorder& recorder) {
     out << "| call | case | without layer (ns) | with layer (ns) | overhead_ns |\n"
         << "|---|---|---:|---:|---:|\n";
     for (const Comparison& c : kComparisons) {
-        const std::optional<double> without = recorder.median_ns(c.without_layer);
-        const std::optional<double> with = recorder.median_ns(c.with_layer);
+        const std::optional<double> without = recorder.median_ns(c.without_layer, c.clock);
+        const std::optional<double> with = recorder.median_ns(c.with_layer, c.clock);
         if (!without || !with) continue;  // filtered out, or skipped with an error
         out << "| " << c.call << " | " << c.what << " | " << *without << " | " << *with << " | "
             << std::showpos << *with - *without << std::noshowpos << " |\n";
@@ -241,6 +286,11 @@ std::string summary(const MedianRecorder& recorder) {
 }  // namespace
 
 int main(int argc, char** argv) {
+#ifdef PHYSHAND_LAVAPIPE_ICD
+    // The Vulkan sessions on lavapipe, unless the caller named a driver.
+    setenv("VK_ICD_FILENAMES", PHYSHAND_LAVAPIPE_ICD, 0);
+    setenv("VK_DRIVER_FILES", PHYSHAND_LAVAPIPE_ICD, 0);
+#endif
     benchmark::Initialize(&argc, argv);
     std::optional<std::string> summary_file;
     if (argc == 3 && std::strcmp(argv[1], "--summary") == 0) {
@@ -254,6 +304,7 @@ int main(int argc, char** argv) {
     MedianRecorder recorder(benchmark::CreateDefaultDisplayReporter());
     benchmark::RunSpecifiedBenchmarks(&recorder);
     benchmark::Shutdown();
+    std::filesystem::remove(no_overlay_config());
 
     const std::string table = summary(recorder);
     if (!summary_file) {

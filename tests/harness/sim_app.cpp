@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "sim_app_vulkan.h"
+
 namespace physhand::test {
 
 namespace {
@@ -23,8 +25,12 @@ void set_environment(const SimAppOptions& options) {
     setenv("XDG_DATA_HOME", PHYSHAND_SIM_APP_DATA_HOME, 1);  // the build tree's layer manifests
     unsetenv("XR_ENABLE_API_LAYERS");
     // The user's own layer config (which may turn it off) must not change what is tested.
-    unsetenv("PHYSHAND_CONFIG");
     setenv("XDG_CONFIG_HOME", PHYSHAND_SIM_APP_CONFIG_HOME, 1);
+    if (options.config.empty()) {
+        unsetenv("PHYSHAND_CONFIG");
+    } else {
+        setenv("PHYSHAND_CONFIG", options.config.c_str(), 1);
+    }
     if (options.layer) {
         unsetenv(kDisableLayer);
     } else {
@@ -55,8 +61,9 @@ SimApp::Instance::~Instance() {
 
 SimApp::SimApp(const SimAppOptions& options) {
     set_environment(options);
-    std::vector<const char*> extensions = {XR_EXT_HAND_TRACKING_EXTENSION_NAME,
-                                           XR_MND_HEADLESS_EXTENSION_NAME};
+    std::vector<const char*> extensions = {
+        XR_EXT_HAND_TRACKING_EXTENSION_NAME,
+        options.vulkan ? XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME : XR_MND_HEADLESS_EXTENSION_NAME};
     if (options.extension) extensions.push_back(XR_PHYSHAND_PHYSICAL_HANDS_EXTENSION_NAME);
     auto instance_info = xr<XrInstanceCreateInfo>(XR_TYPE_INSTANCE_CREATE_INFO);
     std::strcpy(instance_info.applicationInfo.applicationName, "physhand sim app");
@@ -71,6 +78,10 @@ SimApp::SimApp(const SimAppOptions& options) {
     check(xrGetSystem(instance(), &system_info, &system), "xrGetSystem");
     auto session_info = xr<XrSessionCreateInfo>(XR_TYPE_SESSION_CREATE_INFO);
     session_info.systemId = system;  // headless: no graphics binding
+    if (options.vulkan) {
+        vulkan_ = std::make_unique<AppVulkan>(instance(), system);
+        session_info.next = &vulkan_->binding();
+    }
     check(xrCreateSession(instance(), &session_info, &session_), "xrCreateSession");
 
     int events = 0;
@@ -91,6 +102,12 @@ SimApp::SimApp(const SimAppOptions& options) {
         space_info.poseInReferenceSpace.orientation.w = 1.0f;
         check(xrCreateReferenceSpace(session_, &space_info, &spaces_[type - 1]),
               "xrCreateReferenceSpace");
+    }
+
+    if (vulkan_) {
+        // The views, which the head never moves, where the runtime has them at a frame.
+        vulkan_->start(session_, space(XR_REFERENCE_SPACE_TYPE_LOCAL),
+                       frame().predictedDisplayTime);
     }
 
     const auto create_tracker = function<PFN_xrCreateHandTrackerEXT>("xrCreateHandTrackerEXT");
@@ -121,6 +138,12 @@ XrFrameState SimApp::frame() const {
     auto end_info = xr<XrFrameEndInfo>(XR_TYPE_FRAME_END_INFO);
     end_info.displayTime = state.predictedDisplayTime;
     end_info.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
+    const auto* layer = reinterpret_cast<const XrCompositionLayerBaseHeader*>(
+        vulkan_ ? vulkan_->render() : nullptr);
+    if (layer != nullptr) {
+        end_info.layerCount = 1;
+        end_info.layers = &layer;
+    }
     check(xrEndFrame(session_, &end_info), "xrEndFrame");
     return state;
 }

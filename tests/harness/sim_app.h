@@ -4,11 +4,15 @@
 
 #include <array>
 #include <filesystem>
+#include <memory>
 
 // An application on the simulated runtime, through the real OpenXR loader and the layer
-// manifests of the build tree: one instance with one running headless session, with or
-// without the physhand layer. For the tools that fuzz or time the layer from the app's side.
+// manifests of the build tree: one instance with one running session, headless or Vulkan,
+// with or without the physhand layer. For the tools that fuzz or time the layer from the
+// app's side.
 namespace physhand::test {
+
+class AppVulkan;
 
 // A zeroed OpenXR structure carrying its type tag.
 template <typename T>
@@ -25,6 +29,10 @@ struct SimAppOptions {
     bool layer = true;            // false: the implicit layer is disabled, as a user would do it
     bool extension = false;       // enable XR_PHYSHAND_physical_hands (only the layer provides it)
     std::filesystem::path scene;  // the scene whose hands the runtime plays
+    std::filesystem::path config{};  // the layer's config file; empty: none (its defaults)
+    // A Vulkan session (XR_KHR_vulkan_enable2) that shows a projection layer each frame, on
+    // the system's Vulkan device (lavapipe where VK_ICD_FILENAMES says so); else headless.
+    bool vulkan = false;
 };
 
 class SimApp {
@@ -49,7 +57,9 @@ class SimApp {
     XrSpace space(XrReferenceSpaceType type) const;
     XrHandTrackerEXT hand_tracker(XrHandEXT hand) const;
 
-    // One whole frame (wait, begin, end with no layers); its predicted display time and period.
+    // One whole frame (wait, begin, end: no layers when headless, a projection layer of an
+    // acquired and released swapchain image in a Vulkan session); its predicted display time
+    // and period.
     XrFrameState frame() const;
 
   private:
@@ -61,6 +71,8 @@ class SimApp {
 
     PFN_xrVoidFunction void_function(const char* name) const;
 
+    // Before instance_, so that the device outlives the session that uses it.
+    std::unique_ptr<AppVulkan> vulkan_;
     Instance instance_;
     XrSession session_ = XR_NULL_HANDLE;
     std::array<XrSpace, 3> spaces_{};                  // VIEW, LOCAL, STAGE (enum values 1..3)

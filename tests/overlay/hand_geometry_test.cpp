@@ -133,6 +133,23 @@ TEST_F(BuildInstances, ContactTintOnlyOnTouchingPhysicalJointsWhenOn) {
     EXPECT_EQ(out_[4].color, (std::array<float, 4>{0.0f, 1.0f, 0.0f, 1.0f}));
 }
 
+TEST_F(BuildInstances, BonesWithAnEndJointInContactAreTinted) {
+    Hand& hand = frame_.hands[1];
+    hand.physical_active = true;
+    hand.in_contact[5] = true;
+    frame_.parents[5] = 4;  // the bones of joints 5, 6 and 7, after the 26 joints
+    frame_.parents[6] = 5;
+    frame_.parents[7] = 6;
+    frame_.settings.contact_tint = {1.0f, 0.0f, 0.0f};
+    frame_.settings.hand_colors[1] = {0.0f, 1.0f, 0.0f};
+    const DrawCounts counts = build();
+    ASSERT_EQ(counts.physical, static_cast<uint32_t>(kJointCount + 3));
+    const std::array<float, 4> tint{1.0f, 0.0f, 0.0f, 1.0f}, hand_color{0.0f, 1.0f, 0.0f, 1.0f};
+    EXPECT_EQ(out_[kJointCount].color, tint);            // 4-5: its child end touches
+    EXPECT_EQ(out_[kJointCount + 1].color, tint);        // 5-6: its parent end touches
+    EXPECT_EQ(out_[kJointCount + 2].color, hand_color);  // 6-7: neither end touches
+}
+
 TEST_F(BuildInstances, GhostPartsWhereThePhysicalOnesAreAreLeftOut) {
     Hand& hand = frame_.hands[0];
     hand.physical_active = hand.ghost_active = true;

@@ -2,7 +2,6 @@
 // swapchain to one opaque colour each frame and shows it as a projection layer; the layer
 // draws the simulated hands over it; the runtime's PNG capture shows the result.
 
-#include <png.h>
 #include <vulkan/vulkan.h>
 // After vulkan.h; the build defines XR_USE_GRAPHICS_API_VULKAN.
 #include <gtest/gtest.h>
@@ -15,12 +14,16 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "png_file.h"
 
 namespace {
 
 namespace fs = std::filesystem;
+using physhand::test::PngImage;
 
 template <typename T, typename Type>
 T zeroed(Type type) {
@@ -41,33 +44,11 @@ constexpr VkClearColorValue kClear{{0.2f, 0.2f, 0.2f, 1.0f}};
 constexpr int kClearSrgb = 124;  // 1.055 * 0.2^(1/2.4) - 0.055 = 0.4845
 constexpr int32_t kSize = 256;   // the app's views, pixels
 
-struct Png {
-    png_uint_32 width = 0, height = 0;
-    std::vector<std::uint8_t> pixels;  // RGBA
-    const std::uint8_t* at(png_uint_32 x, png_uint_32 y) const {
-        return &pixels[4 * (std::size_t(y) * width + x)];
-    }
-    bool is_clear(png_uint_32 x, png_uint_32 y) const {
-        const std::uint8_t* p = at(x, y);
-        return std::abs(p[0] - kClearSrgb) <= 1 && std::abs(p[1] - kClearSrgb) <= 1 &&
-               std::abs(p[2] - kClearSrgb) <= 1 && p[3] == 255;
-    }
-};
-
-Png read_png(const fs::path& path) {
-    png_image image{};
-    image.version = PNG_IMAGE_VERSION;
-    Png png;
-    if (!png_image_begin_read_from_file(&image, path.c_str())) {
-        ADD_FAILURE() << "cannot read " << path << ": " << image.message;
-        return png;
-    }
-    image.format = PNG_FORMAT_RGBA;
-    png.width = image.width;
-    png.height = image.height;
-    png.pixels.resize(PNG_IMAGE_SIZE(image));
-    EXPECT_TRUE(png_image_finish_read(&image, nullptr, png.pixels.data(), 0, nullptr));
-    return png;
+// The app's colour, where nothing is drawn over it.
+bool is_clear(const PngImage& png, std::uint32_t x, std::uint32_t y) {
+    const std::uint8_t* p = png.at(x, y);
+    return std::abs(p[0] - kClearSrgb) <= 1 && std::abs(p[1] - kClearSrgb) <= 1 &&
+           std::abs(p[2] - kClearSrgb) <= 1 && p[3] == 255;
 }
 
 // Where a point of the app's space lands in a view's image, in [0, 1] from the top left.
@@ -354,14 +335,20 @@ class OverlayLayerTest : public ::testing::Test {
     }
 
     // The newest captured image of view 0.
-    Png last_capture() const {
+    PngImage last_capture() const {
         fs::path newest;
         for (const auto& entry : fs::directory_iterator(dir_ / "capture")) {
             const fs::path& path = entry.path();
             if (path.filename().string().ends_with("_view0.png") && path > newest) newest = path;
         }
         EXPECT_FALSE(newest.empty()) << "nothing captured";
-        return newest.empty() ? Png{} : read_png(newest);
+        if (newest.empty()) return {};
+        try {
+            return physhand::test::read_png(newest);
+        } catch (const std::runtime_error& e) {
+            ADD_FAILURE() << e.what();
+            return {};
+        }
     }
 
     fs::path dir_;
@@ -400,7 +387,7 @@ bool is_tint(const std::uint8_t* p) {
 
 // Pixels around where the wrist projects in view 0 that satisfy `test`.
 template <typename Test>
-int count_near_wrist(const Png& png, const XrView& view, const XrVector3f& wrist, Test test) {
+int count_near_wrist(const PngImage& png, const XrView& view, const XrVector3f& wrist, Test test) {
     const auto [u, v] = project(view, wrist);
     EXPECT_TRUE(u > 0.0 && u < 1.0 && v > 0.0 && v < 1.0) << u << ", " << v;
     const auto cx = static_cast<int>(u * png.width), cy = static_cast<int>(v * png.height);
@@ -418,16 +405,16 @@ TEST_F(OverlayLayerTest, HandsAreDrawnOverTheAppsLayer) {
     write_config(box_config());
     ASSERT_NO_FATAL_FAILURE(start());
     for (int i = 0; i < kFrames; ++i) ASSERT_NO_FATAL_FAILURE(frame());
-    const Png png = last_capture();
+    const PngImage png = last_capture();
     ASSERT_GT(png.width, 0u);
     // Away from the hand (the top corners: the hand is below the eyes): the app's colour.
-    EXPECT_TRUE(png.is_clear(2, 2));
-    EXPECT_TRUE(png.is_clear(png.width - 3, 2));
+    EXPECT_TRUE(is_clear(png, 2, 2));
+    EXPECT_TRUE(is_clear(png, png.width - 3, 2));
     // Around the wrist: the overlay's colours blended over the app's, the tint among them.
     const int reach = static_cast<int>(png.width / 16);
-    EXPECT_GT(
-        count_near_wrist(png, views_[0], wrist_, [&](int x, int y) { return !png.is_clear(x, y); }),
-        reach * reach / 4);
+    EXPECT_GT(count_near_wrist(png, views_[0], wrist_,
+                               [&](int x, int y) { return !is_clear(png, x, y); }),
+              reach * reach / 4);
     EXPECT_GT(count_near_wrist(png, views_[0], wrist_,
                                [&](int x, int y) { return is_tint(png.at(x, y)); }),
               0);
@@ -437,11 +424,11 @@ TEST_F(OverlayLayerTest, TintOffInTheConfigDrawsTheHandsUntinted) {
     write_config(box_config(R"(, "tint": false)"));
     ASSERT_NO_FATAL_FAILURE(start());
     for (int i = 0; i < kFrames; ++i) ASSERT_NO_FATAL_FAILURE(frame());
-    const Png png = last_capture();
+    const PngImage png = last_capture();
     ASSERT_GT(png.width, 0u);
-    EXPECT_GT(
-        count_near_wrist(png, views_[0], wrist_, [&](int x, int y) { return !png.is_clear(x, y); }),
-        0);
+    EXPECT_GT(count_near_wrist(png, views_[0], wrist_,
+                               [&](int x, int y) { return !is_clear(png, x, y); }),
+              0);
     EXPECT_EQ(count_near_wrist(png, views_[0], wrist_,
                                [&](int x, int y) { return is_tint(png.at(x, y)); }),
               0);
@@ -451,11 +438,11 @@ TEST_F(OverlayLayerTest, OverlayOffInTheConfigLeavesTheAppsFrameAlone) {
     write_config(R"({"overlay": false})");
     ASSERT_NO_FATAL_FAILURE(start());
     for (int i = 0; i < kFrames; ++i) ASSERT_NO_FATAL_FAILURE(frame());
-    const Png png = last_capture();
+    const PngImage png = last_capture();
     ASSERT_GT(png.width, 0u);
     int other = 0;
-    for (png_uint_32 y = 0; y < png.height; ++y) {
-        for (png_uint_32 x = 0; x < png.width; ++x) {
+    for (std::uint32_t y = 0; y < png.height; ++y) {
+        for (std::uint32_t x = 0; x < png.width; ++x) {
             const std::uint8_t* p = png.at(x, y);
             if (p[0] != kClearSrgb || p[1] != kClearSrgb || p[2] != kClearSrgb || p[3] != 255) {
                 ++other;

@@ -1,0 +1,22 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+// Reading the simulated runtime's PNG captures back, for the checks of what it composited.
+namespace physhand::test {
+
+struct PngImage {
+    std::uint32_t width = 0, height = 0;
+    std::vector<std::uint8_t> pixels;  // RGBA, 8 bits a channel, rows top to bottom
+    const std::uint8_t* at(std::uint32_t x, std::uint32_t y) const {
+        return &pixels[4 * (std::size_t(y) * width + x)];
+    }
+};
+
+// Throws std::runtime_error naming the file when it cannot be read as a PNG.
+PngImage read_png(const std::filesystem::path& path);
+
+}  // namespace physhand::test
