@@ -256,13 +256,8 @@ ShapeRenderer::Buffer ShapeRenderer::upload(const void* data, VkDeviceSize size,
     vk_check(vkCreateBuffer(vk, &info, nullptr, &result.buffer), "vkCreateBuffer");
     VkMemoryRequirements requirements;
     vkGetBufferMemoryRequirements(vk, result.buffer, &requirements);
-    VkMemoryAllocateInfo allocate{};
-    allocate.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-    allocate.allocationSize = requirements.size;
-    allocate.memoryTypeIndex =
-        device_.memory_type(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
-                                                             VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    vk_check(vkAllocateMemory(vk, &allocate, nullptr, &result.memory), "vkAllocateMemory");
+    result.memory = device_.allocate(
+        requirements, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     vk_check(vkBindBufferMemory(vk, result.buffer, result.memory, 0), "vkBindBufferMemory");
     void* mapped = nullptr;
     vk_check(vkMapMemory(vk, result.memory, 0, VK_WHOLE_SIZE, 0, &mapped), "vkMapMemory");
@@ -311,12 +306,7 @@ const ShapeRenderer::Target& ShapeRenderer::target(const ViewTarget& view) {
     vk_check(vkCreateImage(vk, &depth, nullptr, &t.depth), "vkCreateImage(depth)");
     VkMemoryRequirements requirements;
     vkGetImageMemoryRequirements(vk, t.depth, &requirements);
-    VkMemoryAllocateInfo allocate{};
-    allocate.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-    allocate.allocationSize = requirements.size;
-    allocate.memoryTypeIndex =
-        device_.memory_type(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    vk_check(vkAllocateMemory(vk, &allocate, nullptr, &t.depth_memory), "vkAllocateMemory");
+    t.depth_memory = device_.allocate(requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     vk_check(vkBindImageMemory(vk, t.depth, t.depth_memory, 0), "vkBindImageMemory");
     t.depth_view = image_view(t.depth, kDepthFormat, VK_IMAGE_ASPECT_DEPTH_BIT);
     const std::array<VkImageView, 2> attachments = {t.color_view, t.depth_view};

@@ -112,13 +112,20 @@ XrGraphicsBindingVulkan2KHR VulkanDevice::binding() const {
     return binding;
 }
 
-std::uint32_t VulkanDevice::memory_type(std::uint32_t type_bits,
-                                        VkMemoryPropertyFlags flags) const {
+VkDeviceMemory VulkanDevice::allocate(const VkMemoryRequirements& requirements,
+                                      VkMemoryPropertyFlags flags) const {
     for (std::uint32_t i = 0; i < memory_.memoryTypeCount; ++i) {
-        if ((type_bits & (1u << i)) != 0 &&
-            (memory_.memoryTypes[i].propertyFlags & flags) == flags) {
-            return i;
+        if ((requirements.memoryTypeBits & (1u << i)) == 0 ||
+            (memory_.memoryTypes[i].propertyFlags & flags) != flags) {
+            continue;
         }
+        VkMemoryAllocateInfo info{};
+        info.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
+        info.allocationSize = requirements.size;
+        info.memoryTypeIndex = i;
+        VkDeviceMemory memory = VK_NULL_HANDLE;
+        vk_check(vkAllocateMemory(device_, &info, nullptr, &memory), "vkAllocateMemory");
+        return memory;
     }
     throw std::runtime_error("no Vulkan memory type fits");
 }

@@ -30,8 +30,9 @@ class VulkanDevice {
     VkDevice device() const { return device_; }
     VkQueue queue() const { return queue_; }
     std::uint32_t queue_family() const { return queue_family_; }
-    // A memory type allowed by `type_bits` with `flags`; throws when there is none.
-    std::uint32_t memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags flags) const;
+    // Memory for `requirements` of a type with `flags`; throws when there is none.
+    VkDeviceMemory allocate(const VkMemoryRequirements& requirements,
+                            VkMemoryPropertyFlags flags) const;
 
   private:
     VkInstance instance_ = VK_NULL_HANDLE;
