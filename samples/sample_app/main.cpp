@@ -1,12 +1,15 @@
-// physhand-sample: the sample app. Plays a scene file through the OpenXR loader, the physhand
-// layer and the runtime (the simulated one plays the scene's hands), and prints the same
-// result as physhand-scene, with "path": "layer".
+// physhand-sample: the sample app. Plays scene files through the OpenXR loader, the physhand
+// layer and the runtime (the simulated one plays the scene's hands; a headset, the user's),
+// draws them with Vulkan unless headless, and prints the same result as physhand-scene, with
+// "path": "layer".
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "run_report.h"
 #include "scene.h"
@@ -15,25 +18,68 @@
 namespace {
 
 constexpr const char* kUsage =
-    "usage: physhand-sample [--headless] SCENE.json [--json]\n"
-    "  --headless  run without graphics (XR_MND_headless); the only mode so far\n"
-    "  --json      print the result as one JSON object (default: one summary line)\n";
+    "usage: physhand-sample [options] SCENE.json [SCENE.json ...]\n"
+    "  --headless      run without graphics (XR_MND_headless); default: Vulkan\n"
+    "                  (XR_KHR_vulkan_enable2), drawing colliders and hands\n"
+    "  --live          for a headset: scenes never end on their own; type a line on stdin:\n"
+    "                  r (reset the scene), n (next scene file), q (quit)\n"
+    "  --hover-cm X    objects start to turn translucent within X cm of a hand (default 3)\n"
+    "  --no-feedback   touched objects stay opaque\n"
+    "  --view-size N   each view N pixels wide (default: the runtime's recommendation)\n"
+    "  --json          print each result as one JSON object (default: one summary line)\n";
 
 int usage_error(const std::string& message) {
     std::cerr << "physhand-sample: " << message << "\n" << kUsage;
     return 2;
 }
 
+// The number after an option, or nullopt when there is none or it is out of [low, high].
+std::optional<double> number_argument(int& i, int argc, char** argv, double low, double high) {
+    if (i + 1 >= argc) return std::nullopt;
+    const std::string text = argv[++i];
+    char* end = nullptr;
+    const double value = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !(value >= low && value <= high)) return std::nullopt;
+    return value;
+}
+
+void print(const physhand::sample::ScenePlayed& played, bool json) {
+    if (json) {
+        nlohmann::json object = physhand::to_json(played.result);
+        if (!played.rendering.is_null()) object.update(played.rendering);
+        std::cout << object.dump() << std::endl;
+        return;
+    }
+    std::cout << physhand::summary_line(played.result);
+    if (!played.rendering.is_null()) {
+        std::cout << " frame_ms_median=" << played.rendering["frame_ms_median"].get<double>();
+    }
+    std::cout << std::endl;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string scene_path;
-    bool headless = false;
+    using physhand::sample::UserCommand;
+    std::vector<std::string> scene_paths;
+    physhand::sample::AppOptions options;
     bool json = false;
     for (int i = 1; i < argc; ++i) {
         const std::string_view arg = argv[i];
         if (arg == "--headless") {
-            headless = true;
+            options.rendered = false;
+        } else if (arg == "--live") {
+            options.live = true;
+        } else if (arg == "--no-feedback") {
+            options.feedback.enabled = false;
+        } else if (arg == "--hover-cm") {
+            const auto cm = number_argument(i, argc, argv, 0.0, 100.0);
+            if (!cm) return usage_error("--hover-cm wants a distance in cm from 0 to 100");
+            options.feedback.hover_m = *cm / 100.0;
+        } else if (arg == "--view-size") {
+            const auto size = number_argument(i, argc, argv, 16, 8192);
+            if (!size) return usage_error("--view-size wants a width in pixels from 16 to 8192");
+            options.view_width = static_cast<std::uint32_t>(*size);
         } else if (arg == "--json") {
             json = true;
         } else if (arg == "-h" || arg == "--help") {
@@ -41,31 +87,45 @@ int main(int argc, char** argv) {
             return 0;
         } else if (!arg.empty() && arg[0] == '-') {
             return usage_error("unknown option " + std::string(arg));
-        } else if (scene_path.empty()) {
-            scene_path = arg;
         } else {
-            return usage_error("only one scene file");
+            scene_paths.emplace_back(arg);
         }
     }
-    if (scene_path.empty()) return usage_error("no scene file");
-    if (!headless) {
-        return usage_error(
-            "the Vulkan mode is not available yet; run with --headless (XR_MND_headless)");
-    }
+    if (scene_paths.empty()) return usage_error("no scene file");
+    if (options.live && !options.rendered) return usage_error("--live needs the rendered mode");
 
     try {
-        const physhand::Scene scene = physhand::load_scene(scene_path);
-        // The simulated runtime plays the hands of the scene this names (DESIGN.md); one set
-        // by the user wins.
-        const std::string absolute = std::filesystem::absolute(scene_path).string();
-        setenv("PHYSHAND_SIM_SCENE", absolute.c_str(), 0);
-
-        // A temporary app: its OpenXR objects are gone before anything is printed.
-        const physhand::RunResult result = physhand::sample::XrApp(scene).run();
-        if (json) {
-            std::cout << physhand::to_json(result).dump() << "\n";
+        std::vector<physhand::Scene> scenes;
+        for (const std::string& path : scene_paths) scenes.push_back(physhand::load_scene(path));
+        // The simulated runtime plays the hands of the scene this names, read when an
+        // instance is created (DESIGN.md); one set by the user wins.
+        const bool user_scene = std::getenv("PHYSHAND_SIM_SCENE") != nullptr;
+        // The simulated head looks straight ahead; the paper scenes are on a table below.
+        setenv("PHYSHAND_SIM_HEAD_PITCH_DEG", "-50", 0);
+        const auto name_scene = [&](std::size_t i) {
+            if (user_scene) return;
+            const std::string absolute = std::filesystem::absolute(scene_paths[i]).string();
+            setenv("PHYSHAND_SIM_SCENE", absolute.c_str(), 1);
+        };
+        if (options.live) {
+            name_scene(0);
+            physhand::sample::XrApp app(options);
+            std::size_t i = 0;
+            for (;;) {
+                const physhand::sample::ScenePlayed played = app.play(scenes[i]);
+                print(played, json);
+                if (played.next == UserCommand::Quit) break;
+                if (played.next == UserCommand::Next) i = (i + 1) % scenes.size();
+            }
         } else {
-            std::cout << physhand::summary_line(result) << "\n";
+            for (std::size_t i = 0; i < scenes.size(); ++i) {
+                name_scene(i);
+                // A temporary app per scene: the simulated runtime plays one scene per
+                // instance, and the OpenXR objects are gone before anything is printed.
+                const physhand::sample::ScenePlayed played =
+                    physhand::sample::XrApp(options).play(scenes[i]);
+                print(played, json);
+            }
         }
     } catch (const physhand::SceneError& e) {
         std::cerr << "physhand-sample: " << e.what() << "\n";

@@ -32,6 +32,8 @@ class SceneColliders {
     void follow_paths(XrTime time, double t) const;
     // Every collider, in scene order, at `time`.
     const std::vector<XrPhysicalColliderLocationPHYSHAND>& locate(XrTime time);
+    // What the latest locate() returned.
+    const std::vector<XrPhysicalColliderLocationPHYSHAND>& located() const { return locations_; }
 
   private:
     const Scene& scene_;

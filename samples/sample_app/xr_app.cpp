@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "frame_clock.h"
+#include "touch_log.h"
 #include "xr_check.h"
 
 namespace physhand::sample {
@@ -21,16 +22,17 @@ namespace physhand::sample {
 namespace {
 
 // How long the app waits, at the start and at the end, for the runtime to move the session
-// on before it gives up.
+// on before it gives up (not in live mode, where a person puts the headset on).
 constexpr std::chrono::seconds kStateChangeTimeout{10};
 
 // What the app enables; the layer's extension first, as the likeliest to be missing.
-constexpr std::array<const char*, 3> kExtensions = {XR_PHYSHAND_PHYSICAL_HANDS_EXTENSION_NAME,
-                                                    XR_EXT_HAND_TRACKING_EXTENSION_NAME,
-                                                    XR_MND_HEADLESS_EXTENSION_NAME};
+std::vector<const char*> extensions(bool rendered) {
+    return {XR_PHYSHAND_PHYSICAL_HANDS_EXTENSION_NAME, XR_EXT_HAND_TRACKING_EXTENSION_NAME,
+            rendered ? XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME : XR_MND_HEADLESS_EXTENSION_NAME};
+}
 
 // Throws unless the loader offers every extension the app needs.
-void check_extensions() {
+void check_extensions(const std::vector<const char*>& wanted) {
     std::uint32_t count = 0;
     xr_check(XR_NULL_HANDLE, xrEnumerateInstanceExtensionProperties(nullptr, 0, &count, nullptr),
              "xrEnumerateInstanceExtensionProperties");
@@ -40,12 +42,12 @@ void check_extensions() {
     xr_check(XR_NULL_HANDLE,
              xrEnumerateInstanceExtensionProperties(nullptr, count, &count, properties.data()),
              "xrEnumerateInstanceExtensionProperties");
-    for (const char* name : kExtensions) {
+    for (const char* name : wanted) {
         const bool offered = std::any_of(properties.begin(), properties.end(), [&](const auto& p) {
             return std::strcmp(p.extensionName, name) == 0;
         });
         if (offered) continue;
-        if (name == kExtensions[0]) {
+        if (name == wanted[0]) {
             throw std::runtime_error(
                 "the physhand layer is not active (no " XR_PHYSHAND_PHYSICAL_HANDS_EXTENSION_NAME
                 " extension); is its manifest found, and "
@@ -55,18 +57,26 @@ void check_extensions() {
     }
 }
 
+double median(std::vector<double> values) {
+    if (values.empty()) return 0.0;
+    const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+    std::nth_element(values.begin(), middle, values.end());
+    return *middle;
+}
+
 }  // namespace
 
-XrApp::XrApp(const Scene& scene) : scene_(scene) {
-    check_extensions();
+XrApp::XrApp(const AppOptions& options) : options_(options) {
+    const std::vector<const char*> enabled = extensions(options.rendered);
+    check_extensions(enabled);
     XrInstanceCreateInfo instance_info{};
     instance_info.type = XR_TYPE_INSTANCE_CREATE_INFO;
     std::strncpy(instance_info.applicationInfo.applicationName, "physhand-sample",
                  XR_MAX_APPLICATION_NAME_SIZE - 1);
     instance_info.applicationInfo.applicationVersion = 1;
     instance_info.applicationInfo.apiVersion = XR_CURRENT_API_VERSION;
-    instance_info.enabledExtensionCount = static_cast<std::uint32_t>(kExtensions.size());
-    instance_info.enabledExtensionNames = kExtensions.data();
+    instance_info.enabledExtensionCount = static_cast<std::uint32_t>(enabled.size());
+    instance_info.enabledExtensionNames = enabled.data();
     XrInstance instance = XR_NULL_HANDLE;
     xr_check(XR_NULL_HANDLE, xrCreateInstance(&instance_info, &instance), "xrCreateInstance");
     instance_ = XrHandle<XrInstance>(instance, xrDestroyInstance);
@@ -77,10 +87,16 @@ XrApp::XrApp(const Scene& scene) : scene_(scene) {
     XrSystemId system = XR_NULL_SYSTEM_ID;
     xr_check(instance, xrGetSystem(instance, &system_info, &system), "xrGetSystem");
 
-    // No graphics binding: XR_MND_headless.
+    // Headless: no graphics binding (XR_MND_headless).
     XrSessionCreateInfo session_info{};
     session_info.type = XR_TYPE_SESSION_CREATE_INFO;
     session_info.systemId = system;
+    XrGraphicsBindingVulkan2KHR binding{};
+    if (options.rendered) {
+        vulkan_.emplace(instance, system);
+        binding = vulkan_->binding();
+        session_info.next = &binding;
+    }
     XrSession session = XR_NULL_HANDLE;
     xr_check(instance, xrCreateSession(instance, &session_info, &session), "xrCreateSession");
     session_ = XrHandle<XrSession>(session, xrDestroySession);
@@ -94,6 +110,8 @@ XrApp::XrApp(const Scene& scene) : scene_(scene) {
              "xrCreateReferenceSpace(STAGE)");
     stage_ = XrHandle<XrSpace>(stage, xrDestroySpace);
 
+    if (options.rendered)
+        graphics_.emplace(instance, system, session, *vulkan_, options.view_width);
     trackers_.emplace(instance, session);
     collider_functions_ = ColliderFunctions::load(instance);
 }
@@ -130,32 +148,44 @@ bool XrApp::poll_events() {
     }
 }
 
-void XrApp::play_frame(int frame, XrTime time, RunObserver& observer) {
+void XrApp::play_frame(const Scene& scene, int frame, XrTime time, RunObserver& observer) {
     if (!colliders_) {
-        colliders_.emplace(scene_, collider_functions_, instance_.get(), session_.get(),
+        colliders_.emplace(scene, collider_functions_, instance_.get(), session_.get(),
                            stage_.get(), time);
     }
     const double t = frame_time_s(frame);
     // Before the hands: locating them steps the physics, which must see this frame's targets.
     colliders_->follow_paths(time, t);
-    std::array<LocatedHand, 2> hands;
-    const double step_us = trackers_->locate(stage_.get(), time, hands);
-    observer.add_frame(t, step_us, hands, colliders_->locate(time));
+    const double step_us = trackers_->locate(stage_.get(), time, hands_);
+    observer.add_frame(t, step_us, hands_, colliders_->locate(time));
 }
 
-RunResult XrApp::run() {
+ScenePlayed XrApp::play(const Scene& scene) {
     const XrInstance instance = instance_.get();
     const XrSession session = session_.get();
     // As many frames as the physics-only runner plays (physics/scene_run.cpp).
-    const int frames = static_cast<int>(std::ceil(scene_.duration_s * kFrameRateHz - 1e-9));
-    RunObserver observer(scene_);
+    const int frames = static_cast<int>(std::ceil(scene.duration_s * kFrameRateHz - 1e-9));
+    RunObserver observer(scene);
+    TouchLog touches(scene);
+    // The previous scene's colliders go; this one's are declared at its first frame.
+    colliders_.reset();
+    hands_ = {};
+    if (graphics_) graphics_->show(scene);
+    ScenePlayed played;
     int frame = 0;
-    bool exit_requested = false;
     // Since when no scene frame was played: before the session runs, and after the last.
     auto idle_since = std::chrono::steady_clock::now();
     while (poll_events()) {
-        const bool playing = running_ && frame < frames;
-        if (!playing && std::chrono::steady_clock::now() - idle_since > kStateChangeTimeout) {
+        if (options_.live) {
+            const UserCommand command = poll_user_command();
+            if (command != UserCommand::None) {
+                played.next = command;
+                break;
+            }
+        }
+        const bool playing = running_ && (options_.live || frame < frames);
+        if (!playing && !options_.live &&
+            std::chrono::steady_clock::now() - idle_since > kStateChangeTimeout) {
             throw std::runtime_error(frame == 0 ? "the runtime never started the session"
                                                 : "the runtime never ended the session");
         }
@@ -174,20 +204,38 @@ RunResult XrApp::run() {
         begin.type = XR_TYPE_FRAME_BEGIN_INFO;
         xr_check(instance, xrBeginFrame(session, &begin), "xrBeginFrame");
         if (playing) {
-            play_frame(++frame, state.predictedDisplayTime, observer);
+            play_frame(scene, ++frame, state.predictedDisplayTime, observer);
             idle_since = std::chrono::steady_clock::now();
+        }
+        // After the scene the last state played is shown again: nothing steps.
+        const XrCompositionLayerBaseHeader* layer = nullptr;
+        if (graphics_ && colliders_ && state.shouldRender == XR_TRUE) {
+            layer = graphics_->render(stage_.get(), state.predictedDisplayTime,
+                                      colliders_->located(), hands_, options_.feedback);
+            if (playing && layer != nullptr) {
+                touches.add_frame(frame, colliders_->located(), [this](const Vec3& point) {
+                    return graphics_->view0_position(point);
+                });
+            }
         }
         XrFrameEndInfo end{};
         end.type = XR_TYPE_FRAME_END_INFO;
         end.displayTime = state.predictedDisplayTime;
         end.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
+        end.layerCount = layer != nullptr ? 1 : 0;
+        end.layers = &layer;
         xr_check(instance, xrEndFrame(session, &end), "xrEndFrame");
-        if (frame == frames && !exit_requested) {
+        if (!options_.live && frame == frames && !exit_requested_) {
             xr_check(instance, xrRequestExitSession(session), "xrRequestExitSession");
-            exit_requested = true;
+            exit_requested_ = true;
         }
     }
-    return observer.result();
+    played.result = observer.result();
+    if (graphics_) {
+        played.rendering = {{"frame_ms_median", median(graphics_->frame_ms())},
+                            {"touches", touches.to_json()}};
+    }
+    return played;
 }
 
 }  // namespace physhand::sample

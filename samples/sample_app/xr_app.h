@@ -2,45 +2,73 @@
 
 #include <openxr/openxr.h>
 
+#include <nlohmann/json.hpp>
 #include <optional>
 
 #include "hand_trackers.h"
 #include "run_observer.h"
 #include "scene.h"
 #include "scene_colliders.h"
+#include "scene_drawing.h"
+#include "scene_graphics.h"
 #include "scene_run.h"
+#include "stdin_commands.h"
+#include "vulkan_device.h"
 #include "xr_handle.h"
 
 namespace physhand::sample {
 
-// A headless OpenXR app that plays a scene through the loader, the physhand layer and the
-// runtime: it declares the scene's colliders, moves the kinematic ones along their paths
-// and reads back the physical hands and colliders every frame.
+struct AppOptions {
+    bool rendered = true;  // false: XR_MND_headless, nothing drawn
+    // Scenes do not end on their own, and stdin lines reset or switch them (stdin_commands.h):
+    // for a headset. Otherwise each scene plays for its duration and the app asks to exit.
+    bool live = false;
+    FeedbackSettings feedback;
+    std::optional<std::uint32_t> view_width;  // pixels; the runtime's recommendation if unset
+};
+
+// What playing one scene gave.
+struct ScenePlayed {
+    RunResult result;
+    // Rendered mode only: {"frame_ms_median", "touches" (TouchLog)}; null when headless.
+    nlohmann::json rendering;
+    UserCommand next = UserCommand::Quit;  // what ended it; Quit when the session did
+};
+
+// An OpenXR app that plays scenes through the loader, the physhand layer and the runtime:
+// it declares a scene's colliders, moves the kinematic ones along their paths and reads
+// back the physical hands and colliders every frame, and in the rendered mode draws them.
 class XrApp {
   public:
-    // Creates the instance (XR_EXT_hand_tracking, XR_MND_headless, XR_PHYSHAND_physical_hands),
-    // a headless session, a STAGE space and both hand trackers. Throws XrCallError for a
-    // failed call, std::runtime_error when an extension is missing.
-    explicit XrApp(const Scene& scene);
+    // Creates the instance (XR_EXT_hand_tracking, XR_PHYSHAND_physical_hands, and
+    // XR_KHR_vulkan_enable2 or XR_MND_headless), the Vulkan device when rendered, the
+    // session, a STAGE space and both hand trackers. Throws XrCallError for a failed call,
+    // std::runtime_error when an extension is missing.
+    explicit XrApp(const AppOptions& options);
 
-    // Runs the frame loop until the scene has played or the runtime ends the session.
-    RunResult run();
+    // Runs the frame loop until the scene has played, the runtime ends the session, or (live)
+    // the user asks for something else.
+    ScenePlayed play(const Scene& scene);
 
   private:
     // Handles every queued event; false once the session is over.
     bool poll_events();
-    // Scene frame `frame` (1, 2, ...), displayed at `time`.
-    void play_frame(int frame, XrTime time, RunObserver& observer);
+    // Scene frame `frame` (1, 2, ...) of `scene`, displayed at `time`.
+    void play_frame(const Scene& scene, int frame, XrTime time, RunObserver& observer);
 
-    const Scene& scene_;
+    AppOptions options_;
     // Declared parents first: members are destroyed in reverse order.
     XrHandle<XrInstance> instance_;
+    std::optional<VulkanDevice> vulkan_;  // outlives the session bound to it
     XrHandle<XrSession> session_;
     XrHandle<XrSpace> stage_;
-    std::optional<HandTrackers> trackers_;  // made once the session exists
+    std::optional<SceneGraphics> graphics_;  // rendered mode
+    std::optional<HandTrackers> trackers_;   // made once the session exists
     ColliderFunctions collider_functions_;
-    std::optional<SceneColliders> colliders_;  // declared at the first frame
+    std::optional<SceneColliders> colliders_;  // declared at a scene's first frame
+    std::array<LocatedHand, 2> hands_;         // as located at the latest frame played
     bool running_ = false;                     // between xrBeginSession and xrEndSession
+    bool exit_requested_ = false;
 };
 
 }  // namespace physhand::sample

@@ -1,5 +1,6 @@
 // Frame capture: with PHYSHAND_SIM_CAPTURE=DIR, composited frames of Vulkan sessions are
-// written to DIR/frame_NNNNN_viewV.png, NNNNN the scene frame the frame is displayed at.
+// written to DIR/frame_NNNNN_viewV.png, NNNNN the scene frame the frame is displayed at,
+// and with PHYSHAND_SIM_CONTACT_SHEET=FILE also tiled into one contact sheet.
 // Reading images back costs a queue round trip and CPU blending, so without capture
 // nothing is read back, and with it only the frames written: every
 // PHYSHAND_SIM_CAPTURE_EVERY-th (30 by default; 1 for all) and the last one. Failures are
@@ -24,6 +25,8 @@ constexpr std::int64_t kDefaultEvery = 30;
 std::int64_t scene_frame(XrTime display_time) {
     return std::max<std::int64_t>((display_time - kFirstDisplayTime) / kFramePeriod + 1, 0);
 }
+
+}  // namespace
 
 void write_png(const std::filesystem::path& path, const Rgba8Image& image) {
     FILE* file = std::fopen(path.c_str(), "wb");
@@ -53,12 +56,10 @@ void write_png(const std::filesystem::path& path, const Rgba8Image& image) {
     std::fclose(file);
 }
 
-}  // namespace
-
 std::optional<CaptureSettings> capture_settings() {
     const char* dir = std::getenv("PHYSHAND_SIM_CAPTURE");
     if (dir == nullptr || *dir == '\0') return std::nullopt;
-    CaptureSettings settings{dir, kDefaultEvery};
+    CaptureSettings settings{dir, kDefaultEvery, {}};
     if (const char* every = std::getenv("PHYSHAND_SIM_CAPTURE_EVERY")) {
         char* end = nullptr;
         long long n = std::strtoll(every, &end, 10);
@@ -71,6 +72,8 @@ std::optional<CaptureSettings> capture_settings() {
                          every, static_cast<long long>(kDefaultEvery));
         }
     }
+    if (const char* sheet = std::getenv("PHYSHAND_SIM_CONTACT_SHEET"))
+        settings.contact_sheet = sheet;
     std::error_code error;
     std::filesystem::create_directories(settings.dir, error);
     if (error) {
@@ -106,6 +109,8 @@ void capture_frame(Runtime& rt, XrSession session, const XrFrameEndInfo& info) {
                       v);
         write_png(instance.capture->dir / name, views[v]);
     }
+    if (instance.capture->contact_sheet.empty() || views.empty()) return;
+    data.sheet_tiles.push_back(sheet_tile(views[0]));
 }
 
 }  // namespace physhand::sim

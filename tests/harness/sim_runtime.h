@@ -126,10 +126,20 @@ struct VulkanSystem {
     VkPhysicalDevice physical_device = VK_NULL_HANDLE;  // what that call answered
 };
 
+// An 8-bit sRGB-encoded RGBA image, rows top to bottom: one composited view.
+struct Rgba8Image {
+    std::uint32_t width = 0;
+    std::uint32_t height = 0;
+    std::vector<std::uint8_t> pixels;
+};
+
 // PHYSHAND_SIM_CAPTURE=DIR: composited frames are written there (sim_capture.cpp).
 struct CaptureSettings {
     std::filesystem::path dir;
     std::int64_t every;  // write frames whose number is a multiple of this, and the last
+    // PHYSHAND_SIM_CONTACT_SHEET=FILE: the captured frames of view 0 of a session, a few
+    // evenly spaced, tiled into one PNG when the session is destroyed. Empty: none.
+    std::filesystem::path contact_sheet;
 };
 
 struct InstanceData {
@@ -160,6 +170,7 @@ struct SessionData {
     bool frame_begun = false;               // an xrBeginFrame not yet followed by xrEndFrame
     bool actions_attached = false;          // xrAttachSessionActionSets succeeded (once only)
     bool last_frame_captured = false;       // the frame ended after the stop was queued
+    std::vector<Rgba8Image> sheet_tiles{};  // view 0 of each captured frame, shrunk
     std::unique_ptr<VulkanSession> vulkan;  // null for a headless session
 };
 
@@ -326,13 +337,6 @@ inline Pose from_xr(const XrPosef& p) {
     return {Vec3(p.position.x, p.position.y, p.position.z), Quat(q.w, q.x, q.y, q.z).normalized()};
 }
 
-// An 8-bit sRGB-encoded RGBA image, rows top to bottom: one composited view.
-struct Rgba8Image {
-    std::uint32_t width = 0;
-    std::uint32_t height = 0;
-    std::vector<std::uint8_t> pixels;
-};
-
 // sim_instance.cpp
 const char* structure_type_name(XrStructureType type);  // nullptr when unknown
 // sim_paths.cpp
@@ -361,6 +365,13 @@ std::vector<Rgba8Image> compose_layers(Runtime& rt, XrSession session, const XrF
 std::optional<CaptureSettings> capture_settings();
 // Writes the frame of a checked xrEndFrame as PNG when capture is on and its turn has come.
 void capture_frame(Runtime& rt, XrSession session, const XrFrameEndInfo& info);
+// Writes an image as PNG; failures are reported on stderr only.
+void write_png(const std::filesystem::path& path, const Rgba8Image& image);
+// sim_contact_sheet.cpp
+// A composited view shrunk to a contact-sheet tile.
+Rgba8Image sheet_tile(const Rgba8Image& view);
+// Up to six of the tiles, evenly spaced from the first to the last, side by side in rows.
+Rgba8Image contact_sheet(const std::vector<Rgba8Image>& tiles);
 
 // ---- entry points, one file per concern --------------------------------------------------
 

@@ -47,6 +47,11 @@ const XrBaseInStructure* graphics_binding(const void* next) {
 
 void destroy_session(Runtime& rt, XrSession session) {
     SessionData* data = rt.sessions.find(session);
+    // Its contact sheet, once every frame is in (sim_capture.cpp).
+    const InstanceData& instance = *rt.instances.find(data->instance);
+    if (instance.capture && !data->sheet_tiles.empty()) {
+        write_png(instance.capture->contact_sheet, contact_sheet(data->sheet_tiles));
+    }
     std::erase_if(rt.instances.find(data->instance)->events,
                   [&](const StateChange& change) { return change.session == session; });
     rt.spaces.erase_if([&](XrSpace, const SpaceData& space) { return space.session == session; });

@@ -1,7 +1,13 @@
 // Reference spaces and views. STAGE is the scene frame; the head never moves: it stands
 // at eye height above the STAGE origin looking down -Z, and LOCAL starts there too.
+// PHYSHAND_SIM_HEAD_PITCH_DEG (read once) tilts the head, VIEW and the eyes (not LOCAL,
+// which stays level) that many degrees up, or down when negative, so a scene on a table can
+// be watched.
 
 #include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <numbers>
 
 #include "sim_runtime.h"
@@ -24,9 +30,27 @@ Pose head_in_stage() {
     return {Vec3(0, kEyeHeight, 0), Quat::Identity()};
 }
 
+Pose view_in_stage() {
+    static const Quat pitch = [] {
+        const char* text = std::getenv("PHYSHAND_SIM_HEAD_PITCH_DEG");
+        char* end = nullptr;
+        const double degrees = text == nullptr ? 0.0 : std::strtod(text, &end);
+        if (text != nullptr && (*text == '\0' || *end != '\0' || !(std::abs(degrees) <= 90))) {
+            std::fprintf(stderr,
+                         "physhand simulated runtime: PHYSHAND_SIM_HEAD_PITCH_DEG=%s is not an "
+                         "angle from -90 to 90; the head looks straight ahead\n",
+                         text);
+            return Quat::Identity();
+        }
+        return Quat(Eigen::AngleAxisd(degrees * std::numbers::pi / 180, Vec3::UnitX()));
+    }();
+    return {head_in_stage().position, pitch};
+}
+
 // The origin of each reference space in STAGE.
 Pose reference_in_stage(XrReferenceSpaceType type) {
-    return type == XR_REFERENCE_SPACE_TYPE_STAGE ? Pose{} : head_in_stage();
+    if (type == XR_REFERENCE_SPACE_TYPE_STAGE) return Pose{};
+    return type == XR_REFERENCE_SPACE_TYPE_VIEW ? view_in_stage() : head_in_stage();
 }
 
 // The space and base space of a locate call: both live, of one session.
@@ -46,7 +70,7 @@ std::optional<Pose> space_in_stage(const SpaceData& space) {
 }
 
 Pose eye_in_stage(std::uint32_t view) {
-    return head_in_stage() *
+    return view_in_stage() *
            Pose{Vec3(view == 0 ? -kHalfEyeDistance : kHalfEyeDistance, 0, 0), Quat::Identity()};
 }
 

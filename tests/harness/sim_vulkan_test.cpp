@@ -2,7 +2,6 @@
 // device comes first (lavapipe: CTest sets VK_ICD_FILENAMES). Images are cleared to known
 // colours and the frames the runtime composes are read back from its PNG capture.
 
-#include <png.h>
 #include <vulkan/vulkan.h>
 // After vulkan.h; the build defines XR_USE_GRAPHICS_API_VULKAN.
 #include <openxr/openxr_platform.h>
@@ -13,11 +12,15 @@
 #include <cstdio>
 #include <set>
 
+#include "png_reader.h"
 #include "sim_runtime_fixture.h"
 
 namespace {
 
 using namespace physhand::sim_test;
+using physhand::test::Png;
+using physhand::test::read_png;
+using physhand::test::Rgba;
 
 template <typename T>
 T vk(VkStructureType type) {
@@ -26,10 +29,6 @@ T vk(VkStructureType type) {
     return s;
 }
 
-struct Rgba {
-    int r, g, b, a;
-};
-
 // The test's own sRGB transfer functions, to predict what the compositor writes.
 double srgb_to_linear(double c) {
     return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
@@ -37,31 +36,6 @@ double srgb_to_linear(double c) {
 int linear_to_srgb8(double linear) {
     double c = linear <= 0.0031308 ? linear * 12.92 : 1.055 * std::pow(linear, 1 / 2.4) - 0.055;
     return static_cast<int>(std::lround(std::clamp(c, 0.0, 1.0) * 255));
-}
-
-struct Png {
-    png_uint_32 width = 0, height = 0;
-    std::vector<std::uint8_t> pixels;  // RGBA
-    Rgba at(png_uint_32 x, png_uint_32 y) const {
-        const std::uint8_t* p = &pixels[4 * (std::size_t(y) * width + x)];
-        return {p[0], p[1], p[2], p[3]};
-    }
-};
-
-Png read_png(const std::filesystem::path& path) {
-    png_image image{};
-    image.version = PNG_IMAGE_VERSION;
-    Png png;
-    if (!png_image_begin_read_from_file(&image, path.c_str())) {
-        ADD_FAILURE() << "cannot read " << path << ": " << image.message;
-        return png;
-    }
-    image.format = PNG_FORMAT_RGBA;
-    png.width = image.width;
-    png.height = image.height;
-    png.pixels.resize(PNG_IMAGE_SIZE(image));
-    EXPECT_TRUE(png_image_finish_read(&image, nullptr, png.pixels.data(), 0, nullptr));
-    return png;
 }
 
 #define EXPECT_RGBA_NEAR(actual, expected, tolerance)  \

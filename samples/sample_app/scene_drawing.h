@@ -1,0 +1,50 @@
+#pragma once
+
+#include <openxr/openxr.h>
+#include <openxr/physhand_physical_hands.h>
+
+#include <array>
+#include <vector>
+
+#include "hand_trackers.h"
+#include "scene.h"
+#include "shape_meshes.h"
+#include "shape_renderer.h"
+
+namespace physhand::sample {
+
+// How touched and nearly touched objects are shown (touch_feedback.h).
+struct FeedbackSettings {
+    bool enabled = true;    // false: every object stays opaque
+    double hover_m = 0.03;  // objects start to fade within this gap to a hand
+};
+
+// What the sample draws of a scene: its colliders where the layer says they are, in
+// colours by kind (floor, static, kinematic, one hue per dynamic collider), and the
+// physical hands' joints and bones. The scene format has no colours, so these are the
+// sample's own.
+class SceneDrawing {
+  public:
+    explicit SceneDrawing(const Scene& scene);
+
+    // The meshes every draw refers to.
+    const MeshSet& meshes() const { return meshes_; }
+
+    // Colliders (located in scene order) and both hands as draws; dynamic colliders are
+    // translucent while touched or hovered over (FeedbackSettings).
+    std::vector<Draw> draws(const std::vector<XrPhysicalColliderLocationPHYSHAND>& colliders,
+                            const std::array<LocatedHand, 2>& hands,
+                            const FeedbackSettings& feedback) const;
+
+  private:
+    void add_hand(const LocatedHand& hand, std::vector<Draw>& draws) const;
+
+    const Scene& scene_;
+    MeshSet meshes_;
+    std::vector<MeshRange> collider_meshes_;             // scene order
+    std::vector<std::array<float, 3>> collider_colors_;  // linear rgb
+    MeshRange sphere_;
+    MeshRange cylinder_;
+};
+
+}  // namespace physhand::sample

@@ -1,0 +1,54 @@
+#include "touch_log.h"
+
+#include "xr_convert.h"
+
+namespace physhand::sample {
+
+namespace {
+
+bool touched(const XrPhysicalColliderLocationPHYSHAND& location) {
+    return (location.flags & (XR_PHYSICAL_COLLIDER_TOUCHED_BY_LEFT_BIT_PHYSHAND |
+                              XR_PHYSICAL_COLLIDER_TOUCHED_BY_RIGHT_BIT_PHYSHAND)) != 0;
+}
+
+}  // namespace
+
+TouchLog::TouchLog(const Scene& scene) : scene_(scene), tracks_(scene.colliders.size()) {}
+
+void TouchLog::add_frame(int frame,
+                         const std::vector<XrPhysicalColliderLocationPHYSHAND>& colliders,
+                         const ViewPosition& view0_position) {
+    for (std::size_t i = 0; i < colliders.size(); ++i) {
+        if (scene_.colliders[i].motion != Motion::Dynamic) continue;
+        Track& track = tracks_[i];
+        if (!touched(colliders[i])) {
+            track.current = {};
+            continue;
+        }
+        if (track.current.positions.empty()) track.current.first = frame;
+        track.current.last = frame;
+        track.current.positions.push_back(view0_position(to_vec3(colliders[i].pose.position)));
+        if (track.current.positions.size() > track.longest.positions.size()) {
+            track.longest = track.current;
+        }
+    }
+}
+
+nlohmann::json TouchLog::to_json() const {
+    nlohmann::json out = nlohmann::json::array();
+    for (std::size_t i = 0; i < tracks_.size(); ++i) {
+        const Run& run = tracks_[i].longest;
+        if (run.positions.empty()) continue;
+        const std::size_t middle = run.positions.size() / 2;
+        const auto& position = run.positions[middle];
+        out.push_back(
+            {{"collider", scene_.colliders[i].id},
+             {"first_frame", run.first},
+             {"last_frame", run.last},
+             {"frame", run.first + static_cast<int>(middle)},
+             {"view0_position", position ? nlohmann::json(*position) : nlohmann::json()}});
+    }
+    return out;
+}
+
+}  // namespace physhand::sample

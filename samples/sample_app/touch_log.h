@@ -1,0 +1,48 @@
+#pragma once
+
+#include <openxr/openxr.h>
+#include <openxr/physhand_physical_hands.h>
+
+#include <array>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <vector>
+
+#include "scene.h"
+
+namespace physhand::sample {
+
+// When each dynamic collider was touched, and where it was seen then: for each, its longest
+// run of touched frames and, at the run's middle frame, where its centre appeared in view 0
+// (so a captured frame of the moment can be checked).
+class TouchLog {
+  public:
+    // Where a scene point appears in view 0 (SceneGraphics::view0_position).
+    using ViewPosition = std::function<std::optional<std::array<double, 2>>(const Vec3&)>;
+
+    explicit TouchLog(const Scene& scene);
+
+    // Scene frame `frame`, just rendered, with every collider in scene order.
+    void add_frame(int frame, const std::vector<XrPhysicalColliderLocationPHYSHAND>& colliders,
+                   const ViewPosition& view0_position);
+
+    // [{"collider", "first_frame", "last_frame", "frame", "view0_position": [x, y] or null}],
+    // in scene order, for the colliders touched at all.
+    nlohmann::json to_json() const;
+
+  private:
+    struct Run {
+        int first = 0, last = -1;
+        std::vector<std::optional<std::array<double, 2>>> positions;  // per frame of the run
+    };
+    struct Track {
+        Run current;  // empty (last < first) while untouched
+        Run longest;
+    };
+
+    const Scene& scene_;
+    std::vector<Track> tracks_;  // scene order
+};
+
+}  // namespace physhand::sample
