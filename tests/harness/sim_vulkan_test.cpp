@@ -12,13 +12,13 @@
 #include <cstdio>
 #include <set>
 
-#include "png_reader.h"
+#include "png_file.h"
 #include "sim_runtime_fixture.h"
 
 namespace {
 
 using namespace physhand::sim_test;
-using physhand::test::Png;
+using Png = physhand::test::PngImage;
 using physhand::test::read_png;
 using physhand::test::Rgba;
 
@@ -497,7 +497,7 @@ TEST_F(SimVulkanTest, ClearedImageIsCaptured) {
         ASSERT_EQ(view.width, 1024u);
         ASSERT_EQ(view.height, 1024u);
         for (auto [x, y] : {std::pair{0u, 0u}, {512u, 512u}, {1023u, 1023u}}) {
-            EXPECT_RGBA_NEAR(view.at(x, y), (Rgba{255, 0, 188, 255}), 0);
+            EXPECT_RGBA_NEAR(view.rgba(x, y), (Rgba{255, 0, 188, 255}), 0);
         }
     }
 
@@ -520,7 +520,7 @@ TEST_F(SimVulkanTest, ClearedImageIsCaptured) {
         auto expected = [&](float c) {
             return linear_to_srgb8(unorm ? std::lround(c * 255) / 255.0 : c);
         };
-        EXPECT_RGBA_NEAR(view.at(700, 300),
+        EXPECT_RGBA_NEAR(view.rgba(700, 300),
                          (Rgba{expected(0.8f), expected(0.2f), expected(0.05f), 255}), 1);
     }
 }
@@ -551,11 +551,11 @@ TEST_F(SimVulkanTest, LayersBlendInOrder) {
     const Rgba blended{linear_to_srgb8(half), 0, linear_to_srgb8(1 - half), 255};
 
     ASSERT_EQ(show(running, {base(below.layer), base(premultiplied.layer)}), XR_SUCCESS);
-    EXPECT_RGBA_NEAR(first_frame()[0].at(100, 900), blended, 1);
+    EXPECT_RGBA_NEAR(first_frame()[0].rgba(100, 900), blended, 1);
     ASSERT_EQ(show(running, {base(below.layer), base(straight.layer)}), XR_SUCCESS);
-    EXPECT_RGBA_NEAR(read_png(capture_dir_ / "frame_00002_view0.png").at(100, 900), blended, 1);
+    EXPECT_RGBA_NEAR(read_png(capture_dir_ / "frame_00002_view0.png").rgba(100, 900), blended, 1);
     ASSERT_EQ(show(running, {base(below.layer), base(opaque.layer)}), XR_SUCCESS);
-    EXPECT_RGBA_NEAR(read_png(capture_dir_ / "frame_00003_view1.png").at(100, 900),
+    EXPECT_RGBA_NEAR(read_png(capture_dir_ / "frame_00003_view1.png").rgba(100, 900),
                      (Rgba{linear_to_srgb8(half), 0, 0, 255}), 1);
 }
 
@@ -579,18 +579,18 @@ TEST_F(SimVulkanTest, QuadIsSeenFromEachEye) {
     // -0.218..0.282, pixels 400..656; the right one over -0.282..0.218, pixels 367..623.
     const Rgba black{0, 0, 0, 255}, shown{0, 255, 0, 255};
     std::array<Png, 2> views = first_frame();
-    EXPECT_RGBA_NEAR(views[0].at(512, 512), shown, 0);
-    EXPECT_RGBA_NEAR(views[1].at(512, 512), shown, 0);
-    EXPECT_RGBA_NEAR(views[0].at(640, 512), shown, 0);
-    EXPECT_RGBA_NEAR(views[1].at(640, 512), black, 0);
-    EXPECT_RGBA_NEAR(views[0].at(380, 512), black, 0);
-    EXPECT_RGBA_NEAR(views[1].at(380, 512), shown, 0);
-    EXPECT_RGBA_NEAR(views[0].at(512, 300), black, 0);  // above: tangent 0.41
+    EXPECT_RGBA_NEAR(views[0].rgba(512, 512), shown, 0);
+    EXPECT_RGBA_NEAR(views[1].rgba(512, 512), shown, 0);
+    EXPECT_RGBA_NEAR(views[0].rgba(640, 512), shown, 0);
+    EXPECT_RGBA_NEAR(views[1].rgba(640, 512), black, 0);
+    EXPECT_RGBA_NEAR(views[0].rgba(380, 512), black, 0);
+    EXPECT_RGBA_NEAR(views[1].rgba(380, 512), shown, 0);
+    EXPECT_RGBA_NEAR(views[0].rgba(512, 300), black, 0);  // above: tangent 0.41
 
     quad.eyeVisibility = XR_EYE_VISIBILITY_LEFT;
     ASSERT_EQ(show(running, {base(quad)}), XR_SUCCESS);
-    EXPECT_RGBA_NEAR(read_png(capture_dir_ / "frame_00002_view0.png").at(512, 512), shown, 0);
-    EXPECT_RGBA_NEAR(read_png(capture_dir_ / "frame_00002_view1.png").at(512, 512), black, 0);
+    EXPECT_RGBA_NEAR(read_png(capture_dir_ / "frame_00002_view0.png").rgba(512, 512), shown, 0);
+    EXPECT_RGBA_NEAR(read_png(capture_dir_ / "frame_00002_view1.png").rgba(512, 512), black, 0);
 }
 
 // By default every 30th frame is written, and the last one before the session stops.
@@ -615,7 +615,7 @@ TEST_F(SimVulkanTest, CapturesEveryThirtiethAndTheLastFrame) {
     }
     EXPECT_EQ(files, (std::set<std::string>{"frame_00030_view0.png", "frame_00030_view1.png",
                                             "frame_00046_view0.png", "frame_00046_view1.png"}));
-    EXPECT_RGBA_NEAR(read_png(capture_dir_ / "frame_00046_view0.png").at(0, 0),
+    EXPECT_RGBA_NEAR(read_png(capture_dir_ / "frame_00046_view0.png").rgba(0, 0),
                      (Rgba{255, 255, 255, 255}), 0);
 }
 

@@ -14,11 +14,11 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "png_reader.h"
+#include "png_file.h"
 
 namespace {
 
-using physhand::test::Png;
+using Png = physhand::test::PngImage;
 using physhand::test::read_png;
 using physhand::test::Rgba;
 
@@ -116,7 +116,7 @@ TEST_P(SampleRenderTest, SucceedsAndTheTouchedObjectIsTranslucent) {
     for (int y = cy - kWindow * scale; y <= cy + kWindow * scale; ++y) {
         for (int x = cx - kWindow * scale; x <= cx + kWindow * scale; ++x) {
             ++total;
-            if (difference(shown.at(x, y), opaque.at(x, y)) > kChanged) ++changed;
+            if (difference(shown.rgba(x, y), opaque.rgba(x, y)) > kChanged) ++changed;
         }
     }
     // A good part of it: fingers may lie in front of the rest (a flick touches the ball with
@@ -124,7 +124,7 @@ TEST_P(SampleRenderTest, SucceedsAndTheTouchedObjectIsTranslucent) {
     EXPECT_GT(changed, total / 4) << touch["collider"] << " at frame " << frame << " (" << cx
                                   << ", " << cy << ") is not translucent";
     // The sky is untouched: the two runs show the same world.
-    EXPECT_LE(difference(shown.at(2, 2), opaque.at(2, 2)), 1);
+    EXPECT_LE(difference(shown.rgba(2, 2), opaque.rgba(2, 2)), 1);
 }
 
 INSTANTIATE_TEST_SUITE_P(PaperScenes, SampleRenderTest,
