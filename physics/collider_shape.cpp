@@ -43,6 +43,26 @@ void require_size(const Collider& c, double v, const char* field) {
     require_within(c, v, kMinSize, kMaxSize, field, "m");
 }
 
+// How far the vertices reach out of the line and the plane through the farthest of them:
+// under kMinSize, a hull has no volume (all vertices in one place, on a line or in a plane).
+double hull_thickness(const std::vector<Vec3>& v) {
+    const auto farthest = [&](auto&& distance) {
+        std::size_t best = 0;
+        for (std::size_t i = 1; i < v.size(); ++i) {
+            if (distance(v[i]) > distance(v[best])) best = i;
+        }
+        return std::pair{v[best], distance(v[best])};
+    };
+    const Vec3 a = v.front();
+    const auto [b, length] = farthest([&](const Vec3& p) { return (p - a).norm(); });
+    if (length < kMinSize) return length;
+    const Vec3 axis = (b - a) / length;
+    const auto [c, width] = farthest([&](const Vec3& p) { return (p - a).cross(axis).norm(); });
+    if (width < kMinSize) return width;
+    const Vec3 normal = axis.cross(c - a).normalized();
+    return farthest([&](const Vec3& p) { return std::abs((p - a).dot(normal)); }).second;
+}
+
 }  // namespace
 
 ColliderShape::ColliderShape() = default;
@@ -52,6 +72,12 @@ ColliderShape& ColliderShape::operator=(ColliderShape&&) noexcept = default;
 
 void validate_collider(const Collider& c) {
     const Shape& s = c.shape;
+    if (!std::all_of(s.vertices.begin(), s.vertices.end(),
+                     [](const Vec3& v) { return is_finite(v) && v.norm() <= kMaxSize; })) {
+        std::ostringstream what;
+        what << "vertices must be finite and within " << kMaxSize << " m of the origin";
+        fail(c, what.str());
+    }
     switch (s.kind) {
         case ShapeKind::Box:
             for (int i = 0; i < 3; ++i) require_size(c, s.half_extents[i], "half_extents");
@@ -69,6 +95,9 @@ void validate_collider(const Collider& c) {
             break;
         case ShapeKind::Convex:
             if (s.vertices.size() < 4) fail(c, "a convex hull needs at least 4 vertices");
+            if (!(hull_thickness(s.vertices) >= kMinSize)) {
+                fail(c, "vertices span no volume (all in one place, on a line or in a plane)");
+            }
             break;
         case ShapeKind::Mesh:
             if (s.vertices.size() < 3 || s.indices.empty()) {
@@ -81,15 +110,20 @@ void validate_collider(const Collider& c) {
                     }
                 }
             }
+            if (std::none_of(s.indices.begin(), s.indices.end(), [&](const auto& tri) {
+                    const Vec3& a = s.vertices[static_cast<std::size_t>(tri[0])];
+                    const Vec3& b = s.vertices[static_cast<std::size_t>(tri[1])];
+                    const Vec3& d = s.vertices[static_cast<std::size_t>(tri[2])];
+                    return (b - a).cross(d - a).norm() / 2 >= kMinSize * kMinSize;
+                })) {
+                fail(c, "every mesh triangle has zero area");
+            }
             break;
         case ShapeKind::Plane:
             if (!is_finite(s.normal) || s.normal.norm() < 1e-9 || !std::isfinite(s.offset)) {
                 fail(c, "plane normal must be finite and non-zero");
             }
             break;
-    }
-    for (const Vec3& v : s.vertices) {
-        if (!is_finite(v)) fail(c, "vertices must be finite");
     }
     if ((s.kind == ShapeKind::Mesh || s.kind == ShapeKind::Plane) && c.motion != Motion::Static) {
         fail(c, "mesh and plane colliders must be static");

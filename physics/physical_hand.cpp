@@ -18,7 +18,6 @@ constexpr double kBoneMass = 0.1;
 constexpr double kPalmMass = 0.3;
 constexpr double kHandFriction = 1.0;
 constexpr double kMinRadius = 0.004;
-constexpr double kMaxAngularSpeed = 100.0;  // rad/s
 // Every hand body turns like a 10 cm ball of its mass. A finger capsule's own inertia about
 // its axis is so small that the contact solver would rather roll it than move what the
 // fingers hold, and the grip is lost (measured: lift_hold drops the cube; Ultraleap sets
@@ -209,33 +208,6 @@ void PhysicalHand::drive(const HandPose& target, const HandPose& previous_ghost,
             r.applyTorque(to_bt(torque));
         }
     }
-}
-
-int PhysicalHand::clamp_speeds(double max_speed) {
-    int clamped = 0;
-    for (auto& b : bodies_) {
-        btRigidBody& r = *b->rigid;
-        const btScalar v = r.getLinearVelocity().length();
-        if (!std::isfinite(v) || v > max_speed) {
-            r.setLinearVelocity(std::isfinite(v)
-                                    ? r.getLinearVelocity() * static_cast<btScalar>(max_speed / v)
-                                    : btVector3(0, 0, 0));
-            ++clamped;
-        }
-        const btScalar w = r.getAngularVelocity().length();
-        if (!std::isfinite(w) || w > kMaxAngularSpeed) {
-            r.setAngularVelocity(std::isfinite(w) ? r.getAngularVelocity() *
-                                                        static_cast<btScalar>(kMaxAngularSpeed / w)
-                                                  : btVector3(0, 0, 0));
-        }
-    }
-    return clamped;
-}
-
-double PhysicalHand::max_speed() const {
-    double v = 0.0;
-    for (const auto& b : bodies_) v = std::max<double>(v, b->rigid->getLinearVelocity().length());
-    return v;
 }
 
 void PhysicalHand::set_contact_response(bool enabled) {

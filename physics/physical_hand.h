@@ -37,9 +37,6 @@ class PhysicalHand {
     // end of the substep), `previous_ghost`/`ghost` giving the ghost velocity over the frame.
     void drive(const HandPose& target, const HandPose& previous_ghost, const HandPose& ghost,
                double frame_dt, double h);
-    // Clamps body speeds to `max_speed`; returns the number clamped.
-    int clamp_speeds(double max_speed);
-    double max_speed() const;
     // While re-seating, bodies pass through colliders until they are clear of them.
     void set_contact_response(bool enabled);
     bool contact_response() const { return contact_response_; }

@@ -8,6 +8,10 @@ namespace physhand {
 namespace {
 // METRICS.md: spring-back within this long after a release is not tracking lag.
 constexpr double kContactMemory_s = 0.25;
+// METRICS.md: a thrown body's speed is taken this long after its last contact.
+constexpr double kReleaseDelay_s = 0.05;
+// Frame times are whole nanoseconds: "at or after" must not miss a frame by rounding.
+constexpr double kTimeTolerance_s = 1e-6;
 }  // namespace
 
 double quantile(std::vector<double> values, double q) {
@@ -24,7 +28,15 @@ void RunMetrics::add_hand(double t, HandSide side, const HandPose& ghost, const 
     HandHistory& h = history_[static_cast<int>(side)];
     if (!ghost.active || !physical.active) {
         h.have_previous = false;
+        h.palm_speed.reset();
         return;
+    }
+    if (h.have_previous && t > h.previous_t) {
+        h.palm_speed =
+            (ghost[Joint::Palm].position - h.previous_ghost[Joint::Palm].position).norm() /
+            (t - h.previous_t);
+    } else {
+        h.palm_speed.reset();
     }
     for (std::size_t j = 0; j < kJointCount; ++j) {
         if (in_contact[j]) h.last_contact_t[j] = t;
@@ -40,7 +52,29 @@ void RunMetrics::add_hand(double t, HandSide side, const HandPose& ghost, const 
     }
     h.previous_physical = physical;
     h.previous_ghost = ghost;
+    h.previous_t = t;
     h.have_previous = true;
+}
+
+void RunMetrics::add_body(double t, std::size_t body, const BodyState& state) {
+    if (bodies_.size() <= body) bodies_.resize(body + 1);
+    BodyHistory& b = bodies_[body];
+    for (int side = 0; side < 2; ++side) touching_now_[side] |= state.touched_by[side];
+    if (state.touched_by[0] || state.touched_by[1]) {
+        b.last_contact_t = t;
+        b.hand =
+            state.touched_by[static_cast<int>(HandSide::Right)] ? HandSide::Right : HandSide::Left;
+        b.hand_speed = history_[static_cast<int>(b.hand)].palm_speed.value_or(0.0);
+        b.release.reset();
+        return;
+    }
+    if (!b.last_contact_t || t + kTimeTolerance_s < *b.last_contact_t + kReleaseDelay_s) return;
+    const std::optional<double>& palm = history_[static_cast<int>(b.hand)].palm_speed;
+    if (palm) {
+        b.release =
+            Release{body, *b.last_contact_t, b.hand_speed, state.linear_velocity.norm(), *palm};
+    }
+    b.last_contact_t.reset();
 }
 
 void RunMetrics::add_frame(double step_us, double max_penetration_m, double max_speed,
@@ -49,6 +83,10 @@ void RunMetrics::add_frame(double step_us, double max_penetration_m, double max_
     max_penetration_m_ = std::max(max_penetration_m_, max_penetration_m);
     max_speed_ = std::max(max_speed_, max_speed);
     if (nonfinite) ++nonfinite_;
+    for (int side = 0; side < 2; ++side) {
+        if (touching_now_[side]) ++frames_touching_[side];
+    }
+    touching_now_ = {};
 }
 
 MetricsSummary RunMetrics::summary() const {
@@ -68,6 +106,13 @@ MetricsSummary RunMetrics::summary() const {
     s.max_body_speed = max_speed_;
     s.frames = static_cast<int>(step_us_.size());
     s.nonfinite_count = nonfinite_;
+    s.frames_touching_bodies = frames_touching_;
+    for (const BodyHistory& b : bodies_) {
+        if (b.release && b.release->hand_speed >= kThrowPalmSpeed &&
+            (!s.throw_release || b.release->hand_speed > s.throw_release->hand_speed)) {
+            s.throw_release = b.release;
+        }
+    }
     return s;
 }
 

@@ -2,11 +2,24 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "hand_skeleton.h"
+#include "simulation.h"
 
 namespace physhand {
+
+// A body leaving the hand (METRICS.md, release_speed_ratio): its speed 50 ms after its last
+// hand contact and the ghost palm's speed at that moment.
+struct Release {
+    std::size_t body = 0;     // as numbered in RunMetrics::add_body
+    double time_s = 0.0;      // of the last contact
+    double hand_speed = 0.0;  // the ghost palm's at the last contact
+    double body_speed = 0.0;  // 50 ms later
+    double palm_speed = 0.0;  // the ghost palm's, 50 ms later
+    double ratio() const { return body_speed / palm_speed; }
+};
 
 struct MetricsSummary {
     double tracking_error_rms_mm = 0.0;
@@ -19,7 +32,14 @@ struct MetricsSummary {
     double max_body_speed = 0.0;
     int frames = 0;
     int nonfinite_count = 0;
+    std::array<int, 2> frames_touching_bodies{};  // by HandSide: it touched a dynamic body
+    // The fastest throw: of the bodies' last releases, the one whose hand let go fastest, if
+    // at throwing speed (kThrowPalmSpeed); none in scenes without a throw.
+    std::optional<Release> throw_release;
 };
+
+// A ghost palm slower than this at the last contact placed the body rather than threw it.
+inline constexpr double kThrowPalmSpeed = 0.5;  // m/s
 
 // Accumulates the figures of shared/METRICS.md over a run, frame by frame.
 class RunMetrics {
@@ -28,7 +48,9 @@ class RunMetrics {
     // joints returned, and which joints' bodies touched something.
     void add_hand(double t, HandSide side, const HandPose& ghost, const HandPose& physical,
                   const std::array<bool, kJointCount>& in_contact);
-    // Once per frame, after its hands.
+    // A dynamic body at the same frame, after the hands; `body` numbers it in this run.
+    void add_body(double t, std::size_t body, const BodyState& state);
+    // Once per frame, after its hands and bodies.
     void add_frame(double step_us, double max_penetration_m, double max_speed, bool nonfinite);
     MetricsSummary summary() const;
 
@@ -37,10 +59,21 @@ class RunMetrics {
         std::array<double, kJointCount> last_contact_t;
         HandPose previous_physical;
         HandPose previous_ghost;
+        double previous_t = 0.0;
+        std::optional<double> palm_speed;  // ghost palm at the latest frame
         bool have_previous = false;
         HandHistory() { last_contact_t.fill(-1e9); }
     };
+    struct BodyHistory {
+        std::optional<double> last_contact_t;  // unset once its release is measured
+        HandSide hand = HandSide::Right;       // that touched it last
+        double hand_speed = 0.0;               // its ghost palm's then
+        std::optional<Release> release;        // since its last contact
+    };
     std::array<HandHistory, 2> history_;
+    std::vector<BodyHistory> bodies_;
+    std::array<bool, 2> touching_now_{};
+    std::array<int, 2> frames_touching_{};
     std::vector<double> errors_m_;
     double jitter_sq_ = 0.0, ghost_jitter_sq_ = 0.0;
     std::int64_t jitter_n_ = 0;

@@ -27,6 +27,15 @@ nlohmann::json to_json(const RunResult& r) {
                       {"orientation", {q.x(), q.y(), q.z(), q.w()}}};
     }
     const MetricsSummary& m = r.metrics;
+    nlohmann::json release;  // null: nothing was thrown
+    if (m.throw_release) {
+        const Release& t = *m.throw_release;
+        release = {{"body", r.bodies.at(t.body).first},
+                   {"time_s", t.time_s},
+                   {"hand_speed", t.hand_speed},
+                   {"body_speed", t.body_speed},
+                   {"palm_speed", t.palm_speed}};
+    }
     // An app sees no contact distances through the API: the layer path cannot measure it.
     const bool through_layer = r.path == "layer";
     return {
@@ -45,6 +54,9 @@ nlohmann::json to_json(const RunResult& r) {
         {"jitter_mm", m.jitter_mm},
         {"ghost_jitter_mm", m.ghost_jitter_mm},
         {"max_body_speed", m.max_body_speed},
+        {"release_speed_ratio",
+         m.throw_release ? nlohmann::json(m.throw_release->ratio()) : nlohmann::json()},
+        {"release", release},
         {"frames", m.frames},
         {"nonfinite_count", m.nonfinite_count},
         {"rejected_samples", r.guards.rejected_samples},
@@ -64,6 +76,11 @@ std::string summary_line(const RunResult& r) {
     std::string line = buf;
     if (r.path != "layer") {
         std::snprintf(buf, sizeof buf, "  penetration %.2f mm", r.metrics.max_penetration_mm);
+        line += buf;
+    }
+    if (r.metrics.throw_release) {
+        std::snprintf(buf, sizeof buf, "  release speed ratio %.2f",
+                      r.metrics.throw_release->ratio());
         line += buf;
     }
     for (const PredicateResult& p : r.predicates) {

@@ -8,10 +8,12 @@
 #include <set>
 #include <span>
 #include <sstream>
+#include <stdexcept>
 #include <string_view>
 #include <tuple>
 #include <utility>
 
+#include "collider_shape.h"
 #include "scene.h"
 
 namespace physhand {
@@ -465,6 +467,13 @@ Collider read_collider(const Node& node, const Scene& scene) {
         c.path = obj.get_or("path", read_path, c.path);
     } else {
         obj.forbid("path", "only allowed for a kinematic collider");
+    }
+    // What the simulation would refuse (a hull with no volume, sizes out of float's reach)
+    // is refused here, where the message can say which collider.
+    try {
+        validate_collider(c);
+    } catch (const std::invalid_argument& e) {
+        node.fail(e.what());
     }
     return c;
 }

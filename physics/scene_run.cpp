@@ -10,20 +10,6 @@
 
 namespace physhand {
 
-namespace {
-
-bool hand_finite(const PhysicalHandState& s) {
-    for (std::size_t j = 0; j < kJointCount; ++j) {
-        if (!is_finite(s.joints.joints[j]) || !is_finite(s.linear_velocity[j]) ||
-            !is_finite(s.angular_velocity[j]) || !std::isfinite(s.drive_force[j])) {
-            return false;
-        }
-    }
-    return true;
-}
-
-}  // namespace
-
 SimulationSettings settings_for(const RunOptions& options) {
     SimulationSettings settings;
     if (options.drive) {
@@ -79,20 +65,18 @@ RunResult run_scene(const Scene& input, const RunOptions& options) {
             std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start)
                 .count();
 
-        bool finite = true;
         std::array<std::optional<Pose>, 2> wrists;
         for (HandSide side : kHandSides) {
             const PhysicalHandState& hand = sim.hand(side);
             metrics.add_hand(t, side, ghosts[static_cast<int>(side)], hand.joints, hand.in_contact);
-            finite = finite && hand_finite(hand);
             if (hand.joints.active) wrists[static_cast<int>(side)] = hand.joints[Joint::Wrist];
         }
-        for (ColliderHandle h : handles) {
-            const auto s = sim.body_state(h);
-            finite = finite && is_finite(s->pose) && is_finite(s->linear_velocity) &&
-                     is_finite(s->angular_velocity);
+        for (std::size_t i = 0, body = 0; i < scene.colliders.size(); ++i) {
+            if (scene.colliders[i].motion == Motion::Dynamic)
+                metrics.add_body(t, body++, *sim.body_state(handles[i]));
         }
-        metrics.add_frame(step_us, sim.last_max_penetration(), sim.max_body_speed(), !finite);
+        metrics.add_frame(step_us, sim.last_max_penetration(), sim.last_max_body_speed(),
+                          !sim.state_is_finite());
         predicates.add_frame(t, lookup, wrists);
     }
 

@@ -28,7 +28,7 @@ struct RunResult {
     int substeps = 0;
     bool success = false;
     std::vector<PredicateResult> predicates;
-    MetricsSummary metrics;
+    MetricsSummary metrics;  // throw_release numbers bodies as `bodies` orders them
     GuardCounters guards;
     std::vector<std::pair<std::string, Pose>> bodies;  // final pose of every dynamic collider
 };

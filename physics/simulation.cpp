@@ -138,16 +138,21 @@ std::size_t Simulation::collider_count() const {
     return world_->collider_count();
 }
 
-double Simulation::max_body_speed() const {
-    double v = world_->max_collider_speed();
-    for (const auto& slot : hands_) {
-        if (slot->simulated) v = std::max(v, slot->body->max_speed());
-    }
-    return v;
-}
-
 const PhysicalHandState& Simulation::hand(HandSide side) const {
     return hands_[static_cast<int>(side)]->state;
+}
+
+bool Simulation::state_is_finite() const {
+    for (const auto& slot : hands_) {
+        const PhysicalHandState& s = slot->state;
+        for (std::size_t j = 0; j < kJointCount; ++j) {
+            if (!is_finite(s.joints.joints[j]) || !is_finite(s.linear_velocity[j]) ||
+                !is_finite(s.angular_velocity[j]) || !std::isfinite(s.drive_force[j])) {
+                return false;
+            }
+        }
+    }
+    return world_->colliders_finite();
 }
 
 void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input) {
@@ -248,6 +253,7 @@ void Simulation::step_to(double time_s, const std::array<HandPose, 2>& ghosts) {
 void Simulation::step_substeps(int substeps) {
     last_substeps_ = 0;
     last_max_penetration_ = 0.0;
+    last_max_body_speed_ = 0.0;
     contacts_.clear();
     world_->clear_touched();
     for (auto& slot : hands_) slot->state.in_contact = {};
@@ -268,12 +274,9 @@ void Simulation::step_substeps(int substeps) {
             const HandPose target = interpolate_hand(slot->previous_ghost, slot->ghost, fraction);
             slot->body->drive(target, slot->previous_ghost, slot->ghost, step_dt, h);
         }
-        world_->step(h, fraction);
-        for (auto& slot : hands_) {
-            if (slot->simulated)
-                guards_.speed_clamps += slot->body->clamp_speeds(settings_.max_body_speed);
-        }
-        guards_.speed_clamps += world_->clamp_collider_speeds();
+        const SpeedCheck speeds = world_->step(h, fraction);
+        guards_.speed_clamps += static_cast<std::uint64_t>(speeds.clamped);
+        last_max_body_speed_ = std::max(last_max_body_speed_, speeds.fastest);
         ++last_substeps_;
 
         std::array<bool, 2> penetrating{};

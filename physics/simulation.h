@@ -49,7 +49,7 @@ struct PhysicalHandState {
 struct GuardCounters {
     std::uint64_t rejected_samples = 0;  // NaN/Inf, zero quaternion, absurd jump
     std::uint64_t reseats = 0;
-    std::uint64_t speed_clamps = 0;
+    std::uint64_t speed_clamps = 0;  // body-substeps the speed limit slowed down
 };
 
 struct ContactInfo {
@@ -95,13 +95,19 @@ class Simulation {
     double time() const { return time_s_; }
 
     const PhysicalHandState& hand(HandSide side) const;
+    // Every pose, velocity and drive force of both hands and of every collider is finite
+    // (the nonfinite_count of METRICS.md counts frames where this is false).
+    bool state_is_finite() const;
     const std::vector<ContactInfo>& contacts() const { return contacts_; }
     // Deepest hand-collider penetration at the end of any substep of the last step, m.
     double last_max_penetration() const { return last_max_penetration_; }
     const GuardCounters& guard_counters() const { return guards_; }
     int last_substeps() const { return last_substeps_; }
-    // Fastest linear speed of any simulated body (hand part or dynamic collider) now.
-    double max_body_speed() const;
+    // Fastest linear speed the dynamics gave any simulated body (hand part or awake dynamic
+    // collider) in a substep of the last step (infinity if not finite). No body moves faster
+    // than settings().max_body_speed: the limit scales it down before it moves (counted in
+    // speed_clamps). This says what the drive and the contacts asked for.
+    double last_max_body_speed() const { return last_max_body_speed_; }
 
   private:
     struct HandSlot;
@@ -118,6 +124,7 @@ class Simulation {
     std::int64_t tick_ = 0;
     bool started_ = false;
     double last_max_penetration_ = 0.0;
+    double last_max_body_speed_ = 0.0;
     int last_substeps_ = 0;
     GuardCounters guards_;
 };

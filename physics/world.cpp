@@ -2,10 +2,12 @@
 
 #include <btBulletDynamicsCommon.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "bullet_convert.h"
+#include "speed_limit.h"
 
 namespace physhand {
 
@@ -14,7 +16,6 @@ namespace {
 // Below these speeds for 2 s (Bullet's deactivation time) a dynamic body may sleep.
 constexpr btScalar kSleepLinear = 0.05f;
 constexpr btScalar kSleepAngular = 0.1f;
-constexpr double kMaxAngularSpeed = 100.0;  // rad/s
 // Round shapes need a little rolling resistance to ever come to rest.
 constexpr btScalar kRollingFriction = 0.001f;
 
@@ -41,24 +42,35 @@ class HandReachDispatcher : public btCollisionDispatcher {
     }
 };
 
-// Scales a body's speeds down to the limits, a non-finite one to zero; true when its
-// linear speed was over.
-bool clamp_speeds(btRigidBody& body, double max_speed) {
-    const btScalar w = body.getAngularVelocity().length();
-    if (!std::isfinite(w) || w > kMaxAngularSpeed) {
-        body.setAngularVelocity(std::isfinite(w) ? body.getAngularVelocity() *
-                                                       static_cast<btScalar>(kMaxAngularSpeed / w)
-                                                 : btVector3(0, 0, 0));
-    }
-    const btScalar v = body.getLinearVelocity().length();
-    if (std::isfinite(v) && v <= max_speed) return false;
-    body.setLinearVelocity(std::isfinite(v)
-                               ? body.getLinearVelocity() * static_cast<btScalar>(max_speed / v)
-                               : btVector3(0, 0, 0));
-    return true;
-}
-
 }  // namespace
+
+// Bullet's world with the speed limit where it bounds motion: after the constraint solver
+// and before positions are integrated, so no body ever moves faster than the limit.
+class SpeedLimitedWorld : public btDiscreteDynamicsWorld {
+  public:
+    SpeedLimitedWorld(btDispatcher* dispatcher, btBroadphaseInterface* broadphase,
+                      btConstraintSolver* solver, btCollisionConfiguration* configuration,
+                      double max_speed)
+        : btDiscreteDynamicsWorld(dispatcher, broadphase, solver, configuration),
+          max_speed_(max_speed) {}
+    // What the limit found in the last substep.
+    const SpeedCheck& last_check() const { return last_check_; }
+
+  protected:
+    void integrateTransforms(btScalar h) override {
+        last_check_ = {};
+        for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i) {
+            btRigidBody& body = *m_nonStaticRigidBodies[i];
+            if (!body.isStaticOrKinematicObject() && body.isActive())
+                last_check_.add(limit_speeds(body, max_speed_));
+        }
+        btDiscreteDynamicsWorld::integrateTransforms(h);
+    }
+
+  private:
+    double max_speed_;
+    SpeedCheck last_check_;
+};
 
 struct World::Entry {
     Collider collider;
@@ -76,8 +88,9 @@ World::World(const Settings& settings)
       dispatcher_(std::make_unique<HandReachDispatcher>(configuration_.get())),
       broadphase_(std::make_unique<btDbvtBroadphase>()),
       solver_(std::make_unique<btSequentialImpulseConstraintSolver>()),
-      world_(std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(),
-                                                       solver_.get(), configuration_.get())) {
+      world_(std::make_unique<SpeedLimitedWorld>(dispatcher_.get(), broadphase_.get(),
+                                                 solver_.get(), configuration_.get(),
+                                                 settings.max_body_speed)) {
     world_->setGravity(to_bt(settings.gravity));
     btContactSolverInfo& info = world_->getSolverInfo();
     info.m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
@@ -179,7 +192,7 @@ bool World::teleport(ColliderHandle handle, const Pose& pose, const Vec3& linear
         body->setAngularVelocity(to_bt(angular_velocity));
         // At once: finite but huge velocities (in float) would otherwise turn the first
         // step's state into NaN (found by fuzzing the extension, tests/fuzz).
-        clamp_speeds(*body, settings_.max_body_speed);
+        limit_speeds(*body, settings_.max_body_speed);
         body->activate(true);
     }
     e->kinematic_from = e->kinematic_to = pose;
@@ -206,6 +219,15 @@ std::optional<BodyState> World::body_state(ColliderHandle handle) const {
     return s;
 }
 
+bool World::colliders_finite() const {
+    return std::all_of(colliders_.begin(), colliders_.end(), [](const auto& entry) {
+        const btRigidBody& b = *entry.second->body;
+        const btTransform& t = b.getWorldTransform();
+        return is_finite(from_bt(t)) && is_finite(from_bt(b.getLinearVelocity())) &&
+               is_finite(from_bt(b.getAngularVelocity()));
+    });
+}
+
 void World::add_hand_body(btRigidBody* body) {
     world_->addRigidBody(body, kHandGroup, btBroadphaseProxy::AllFilter & ~kHandGroup);
     ++hand_bodies_;
@@ -225,7 +247,7 @@ bool World::needs_step() const {
     return false;
 }
 
-void World::step(double h, double fraction) {
+SpeedCheck World::step(double h, double fraction) {
     for (auto& [handle, e] : colliders_) {
         if (!e->kinematic_moving) continue;
         e->body->setWorldTransform(
@@ -243,6 +265,7 @@ void World::step(double h, double fraction) {
             m->refreshContactPoints(a->getWorldTransform(), b->getWorldTransform());
         }
     }
+    return world_->last_check();
 }
 
 void World::finish_kinematic_motion() {
@@ -253,25 +276,6 @@ void World::finish_kinematic_motion() {
         // Zero velocity while it stands still, so resting objects are not dragged.
         e->body->setInterpolationWorldTransform(e->body->getWorldTransform());
     }
-}
-
-int World::clamp_collider_speeds() {
-    int clamped = 0;
-    for (auto& [handle, e] : colliders_) {
-        if (e->collider.motion != Motion::Dynamic || !e->body->isActive()) continue;
-        if (clamp_speeds(*e->body, settings_.max_body_speed)) ++clamped;
-    }
-    return clamped;
-}
-
-double World::max_collider_speed() const {
-    double v = 0.0;
-    for (const auto& [handle, e] : colliders_) {
-        if (e->collider.motion == Motion::Dynamic) {
-            v = std::max<double>(v, e->body->getLinearVelocity().length());
-        }
-    }
-    return v;
 }
 
 bool World::any_collider_near(const Vec3& lo, const Vec3& hi) const {

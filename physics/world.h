@@ -8,16 +8,18 @@
 #include "collider_shape.h"
 #include "scene.h"
 #include "simulation.h"
+#include "speed_limit.h"
 
 class btBroadphaseInterface;
 class btCollisionDispatcher;
 class btCollisionObject;
 class btDefaultCollisionConfiguration;
-class btDiscreteDynamicsWorld;
 class btRigidBody;
 class btSequentialImpulseConstraintSolver;
 
 namespace physhand {
+
+class SpeedLimitedWorld;
 
 // Who a Bullet object is, kept in its user indices.
 enum class BodyRole : int { Collider = 1, Hand = 2 };
@@ -45,6 +47,8 @@ class World {
                   const Vec3& angular_velocity);
     std::optional<BodyState> body_state(ColliderHandle handle) const;
     std::size_t collider_count() const { return colliders_.size(); }
+    // Every collider's pose and velocities are finite.
+    bool colliders_finite() const;
 
     void add_hand_body(btRigidBody* body);
     void remove_hand_body(btRigidBody* body);
@@ -53,12 +57,10 @@ class World {
     // or hand bodies in the world.
     bool needs_step() const;
     // One fixed substep of length h; `fraction` (0..1] of the way to kinematic targets.
-    void step(double h, double fraction);
+    // Every body's speeds are limited before it moves; returns what the limit found.
+    SpeedCheck step(double h, double fraction);
     // Kinematic targets become the current poses; the next step starts from there.
     void finish_kinematic_motion();
-    // Clamps speeds of dynamic colliders; returns how many were clamped.
-    int clamp_collider_speeds();
-    double max_collider_speed() const;
 
     // Any collider whose bounds come within `margin` of the box [lo, hi].
     bool any_collider_near(const Vec3& lo, const Vec3& hi) const;
@@ -85,7 +87,7 @@ class World {
     std::unique_ptr<btCollisionDispatcher> dispatcher_;
     std::unique_ptr<btBroadphaseInterface> broadphase_;
     std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
-    std::unique_ptr<btDiscreteDynamicsWorld> world_;
+    std::unique_ptr<SpeedLimitedWorld> world_;
     std::map<ColliderHandle, std::unique_ptr<Entry>> colliders_;  // ordered: deterministic
     ColliderHandle next_handle_ = 1;
     int hand_bodies_ = 0;

@@ -60,6 +60,10 @@ void RunObserver::add_frame(double t, double step_us, const std::array<LocatedHa
     }
 
     last_ = colliders;
+    for (std::size_t i = 0, body = 0; i < last_.size(); ++i) {
+        if (scene_.colliders[i].motion == Motion::Dynamic)
+            metrics_.add_body(t, body++, body_state(last_[i]));
+    }
     double max_speed = 0.0;
     for (const XrPhysicalColliderLocationPHYSHAND& c : last_) {
         max_speed = std::max(max_speed, to_vec3(c.linearVelocity).norm());

@@ -6,9 +6,9 @@
 //
 //   xrLocateSpace          a call the layer does not intercept: it hands the app the
 //                          runtime's own function, so the overhead should be nil.
-//   xrLocateHandJointsEXT  intercepted. Gated: no collider near the hand, so the layer
-//                          returns the runtime's joints and steps nothing. In contact: the
-//                          scene's hand rests pressed on a static box created through the
+//   xrLocateHandJointsEXT  intercepted. Gated: the only collider is 2 m from the hand, so
+//                          the layer returns the runtime's joints and steps nothing. In contact:
+//                          the scene's hand rests pressed on a static box created through the
 //                          extension, so every call steps the physics.
 //   xrEndFrame             intercepted, in a Vulkan session (on lavapipe unless
 //                          VK_ICD_FILENAMES names another driver) that shows a projection
@@ -63,6 +63,9 @@ constexpr int kSettleFrames = 135;
 // The box under the hand: its top at y = 1 m, 2 cm above where the ghost palm stops.
 constexpr XrVector3f kBoxHalfExtents = {0.15f, 0.05f, 0.15f};
 constexpr XrVector3f kBoxCentre = {0.0f, 0.95f, -0.35f};
+// Gated: the same box 2 m to the side, so the layer looks for colliders near the hand and
+// finds none.
+constexpr XrVector3f kFarBoxCentre = {2.0f, 0.95f, -0.35f};
 
 enum class Path { Runtime, LayerGated, LayerContact, LayerOverlay, LayerNoOverlay };
 
@@ -80,13 +83,13 @@ std::filesystem::path no_overlay_config() {
 SimApp make_app(Path path, bool vulkan = false) {
     return SimApp(
         {.layer = path != Path::Runtime,
-         .extension = path == Path::LayerContact,
+         .extension = path == Path::LayerContact || path == Path::LayerGated,
          .scene = PHYSHAND_OVERHEAD_SCENE,
          .config = path == Path::LayerNoOverlay ? no_overlay_config() : std::filesystem::path(),
          .vulkan = vulkan});
 }
 
-void create_box_under_hand(const SimApp& app, XrTime time) {
+void create_box(const SimApp& app, XrTime time, const XrVector3f& centre) {
     auto info =
         xr<XrPhysicalColliderCreateInfoPHYSHAND>(XR_TYPE_PHYSICAL_COLLIDER_CREATE_INFO_PHYSHAND);
     info.shape = XR_PHYSICAL_COLLIDER_SHAPE_BOX_PHYSHAND;
@@ -94,7 +97,7 @@ void create_box_under_hand(const SimApp& app, XrTime time) {
     info.halfExtents = kBoxHalfExtents;
     info.friction = 0.8f;
     info.space = app.space(XR_REFERENCE_SPACE_TYPE_STAGE);
-    info.pose = {{0.0f, 0.0f, 0.0f, 1.0f}, kBoxCentre};
+    info.pose = {{0.0f, 0.0f, 0.0f, 1.0f}, centre};
     info.time = time;
     XrPhysicalColliderPHYSHAND box = XR_NULL_HANDLE;
     check(app.function<PFN_xrCreatePhysicalColliderPHYSHAND>("xrCreatePhysicalColliderPHYSHAND")(
@@ -168,7 +171,8 @@ void locate_hand(benchmark::State& state, Path path) {
     const SimApp app = make_app(path);
     const XrFrameState frame = app.frame();
     XrTime time = frame.predictedDisplayTime;
-    if (path == Path::LayerContact) create_box_under_hand(app, time);
+    if (path == Path::LayerContact) create_box(app, time, kBoxCentre);
+    if (path == Path::LayerGated) create_box(app, time, kFarBoxCentre);
     RightHand hand(app);
     for (int i = 0; i < kSettleFrames; ++i) {
         time += frame.predictedDisplayPeriod;

@@ -1,6 +1,7 @@
 // physhand-scaling: physics cost against the number of dynamic colliders, with both hands
 // in contact with a pile, both far from everything, and one hand near; and what gating and
 // sleeping save on the sample scenes (each switched off, as a ratio).
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -78,18 +79,30 @@ Scene pile_scene(int n, Placement placement) {
             box("cube" + std::to_string(i), c, Vec3::Constant(0.02), Motion::Dynamic, 0.05));
         top = std::max(top, c.y() + 0.02);
     }
+    // Palms side by side over the middle of the pile.
     s.hands[static_cast<int>(HandSide::Left)] =
-        pressing_hand(-0.12, top, placement == Placement::BothInContact);
+        pressing_hand(-0.06, top, placement == Placement::BothInContact);
     s.hands[static_cast<int>(HandSide::Right)] =
-        pressing_hand(0.12, top, placement != Placement::BothFar);
+        pressing_hand(0.06, top, placement != Placement::BothFar);
     return s;
 }
 
-double median_step_us(const Scene& scene, const RunOptions& options, int repeat) {
+struct Timing {
+    double step_us = 0.0;              // median over the runs of each run's median
+    std::array<double, 2> touching{};  // by HandSide: share of frames it touched a cube
+};
+
+Timing median_step_us(const Scene& scene, const RunOptions& options, int repeat) {
     std::vector<double> medians;
-    for (int i = 0; i < repeat; ++i)
-        medians.push_back(run_scene(scene, options).metrics.step_us_median);
-    return quantile(medians, 0.5);
+    Timing timing;
+    for (int i = 0; i < repeat; ++i) {
+        const MetricsSummary m = run_scene(scene, options).metrics;
+        medians.push_back(m.step_us_median);
+        for (int side = 0; side < 2; ++side)
+            timing.touching[side] = static_cast<double>(m.frames_touching_bodies[side]) / m.frames;
+    }
+    timing.step_us = quantile(medians, 0.5);
+    return timing;
 }
 
 std::string fmt(double v, const char* f = "%.0f") {
@@ -107,29 +120,30 @@ int main(int argc, char** argv) {
     const fs::path& scenes_dir = options->scenes_dir;
     const int repeat = options->repeat;
     std::ofstream csv(out / "scaling.csv");
-    csv << "placement,dynamic_colliders,step_us_median\n";
+    csv << "placement,dynamic_colliders,step_us_median,left_touching,right_touching\n";
     std::ofstream md(out / "scaling.md");
     md << "\n## Scaling\n\nstep_us median (default drive) against the number of dynamic 4 cm cubes "
-          "piled on a "
-          "table; the hands press into the pile and sweep through it for 6 s (the pile starts at "
-          "rest, and "
-          "sleeps once settled unless a hand is in it).\n\n![scaling](bench/scaling.svg)\n\n"
-          "| dynamic colliders |";
+          "piled on a table; the hands press into the pile side by side and sweep through it for "
+          "6 s (the pile starts at rest, and sleeps once settled unless a hand is in it). In "
+          "brackets: the share of frames in which the left / right hand touched a cube.\n\n"
+          "![scaling](bench/scaling.svg)\n\n| dynamic colliders |";
     for (Placement p : {Placement::BothInContact, Placement::OneNear, Placement::BothFar})
         md << ' ' << name_of(p) << " |";
     md << "\n|---|---|---|---|\n";
     SvgPlot plot("Scaling: cost against dynamic colliders", "dynamic colliders (+1)",
-                 "step_us median");
+                 "step_us median", "colliders");
     std::vector<std::vector<SvgPlot::Point>> series(3);
     for (int n : kCounts) {
         md << "| " << n << " |";
         int k = 0;
         for (Placement p : {Placement::BothInContact, Placement::OneNear, Placement::BothFar}) {
             // Large piles take minutes a run; their timings need no repeats to be seen.
-            const double us = median_step_us(pile_scene(n, p), RunOptions{}, n >= 200 ? 1 : repeat);
-            csv << '"' << name_of(p) << "\"," << n << ',' << us << '\n';
-            md << ' ' << fmt(us) << " |";
-            series[k++].push_back({n + 1.0, us, std::to_string(n), false, false});
+            const Timing t = median_step_us(pile_scene(n, p), RunOptions{}, n >= 200 ? 1 : repeat);
+            csv << '"' << name_of(p) << "\"," << n << ',' << t.step_us << ',' << t.touching[0]
+                << ',' << t.touching[1] << '\n';
+            md << ' ' << fmt(t.step_us) << " (" << fmt(100 * t.touching[0]) << " / "
+               << fmt(100 * t.touching[1]) << " %) |";
+            series[k++].push_back({n + 1.0, t.step_us, std::to_string(n), false, false});
         }
         md << '\n';
     }
@@ -139,25 +153,25 @@ int main(int argc, char** argv) {
     std::ofstream(out / "scaling.svg") << plot.render();
 
     md << "\n## What skipping saves\n\nstep_us median with each skip switched off, divided by the "
-          "same run with "
-          "everything on (default drive; higher is more saved).\n\n| scene | on (µs) | no gating | "
-          "no sleeping |\n"
-          "|---|---|---|---|\n";
+          "same run with everything on (default drive; higher is more saved).\n\n| scene | on "
+          "(µs) | no gating | no sleeping | neither |\n|---|---|---|---|---|\n";
     std::vector<std::pair<std::string, Scene>> cases = {
-        {"pile of 50, both hands far", pile_scene(50, Placement::BothFar)},
-        {"pile of 50, one hand near", pile_scene(50, Placement::OneNear)}};
+        {"pile of 200, both hands far", pile_scene(200, Placement::BothFar)},
+        {"pile of 50, one hand near", pile_scene(50, Placement::OneNear)},
+        {"pile of 50, both hands in contact", pile_scene(50, Placement::BothInContact)}};
     for (const char* name :
          {"free_motion", "press_table", "lift_hold", "stack", "throw", "sphere"}) {
         cases.emplace_back(name, load_scene(scenes_dir / (std::string(name) + ".json")));
     }
     for (const auto& [label, scene] : cases) {
-        RunOptions on, no_gating, no_sleeping;
-        no_gating.gating = false;
-        no_sleeping.sleeping = false;
-        const double base = median_step_us(scene, on, repeat);
-        md << "| " << label << " | " << fmt(base) << " | "
-           << fmt(median_step_us(scene, no_gating, repeat) / base, "%.2f") << "× | "
-           << fmt(median_step_us(scene, no_sleeping, repeat) / base, "%.2f") << "× |\n";
+        RunOptions on, no_gating, no_sleeping, neither;
+        no_gating.gating = neither.gating = false;
+        no_sleeping.sleeping = neither.sleeping = false;
+        const double base = median_step_us(scene, on, repeat).step_us;
+        md << "| " << label << " | " << fmt(base) << " |";
+        for (const RunOptions& off : {no_gating, no_sleeping, neither})
+            md << ' ' << fmt(median_step_us(scene, off, repeat).step_us / base, "%.2f") << "× |";
+        md << '\n';
     }
     std::cout << "wrote " << (out / "scaling.csv") << ", " << (out / "scaling.md")
               << " and scaling.svg\n";

@@ -8,7 +8,6 @@
 namespace {
 
 constexpr double kW = 640, kH = 420, kLeft = 70, kRight = 150, kTop = 40, kBottom = 50;
-constexpr double kFloor = 1e-3;  // log axes: zero errors are drawn at this value
 const char* const kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e"};
 
 std::string num(double v) {
@@ -25,32 +24,38 @@ std::string tick(double v) {
 
 }  // namespace
 
-SvgPlot::SvgPlot(std::string title, std::string x_label, std::string y_label)
-    : title_(std::move(title)), x_label_(std::move(x_label)), y_label_(std::move(y_label)) {}
+SvgPlot::SvgPlot(std::string title, std::string x_label, std::string y_label, std::string labels)
+    : title_(std::move(title)),
+      x_label_(std::move(x_label)),
+      y_label_(std::move(y_label)),
+      labels_(std::move(labels)) {}
 
 void SvgPlot::add_series(const std::string& name, const std::vector<Point>& points) {
     series_.push_back({name, points});
 }
 
 std::string SvgPlot::render() const {
+    // Log axes from the decade below the smallest positive value to the one above the
+    // largest; a zero is drawn on the bottom (or left) edge, a decade under every other value.
     double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
     for (const Series& s : series_) {
         for (const Point& p : s.points) {
             if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
-            x0 = std::min(x0, std::log10(std::max(p.x, kFloor)));
-            x1 = std::max(x1, std::log10(std::max(p.x, kFloor)));
-            y0 = std::min(y0, std::log10(std::max(p.y, kFloor)));
-            y1 = std::max(y1, std::log10(std::max(p.y, kFloor)));
+            if (p.x > 0) x0 = std::min(x0, std::log10(p.x)), x1 = std::max(x1, std::log10(p.x));
+            if (p.y > 0) y0 = std::min(y0, std::log10(p.y)), y1 = std::max(y1, std::log10(p.y));
         }
     }
-    x0 = std::floor(x0), x1 = std::max(std::ceil(x1), x0 + 1);
-    y0 = std::floor(y0), y1 = std::max(std::ceil(y1), y0 + 1);
+    if (x0 > x1) x0 = x1 = 0;  // nothing positive to place
+    if (y0 > y1) y0 = y1 = 0;
+    x0 = std::floor(x0) - 1, x1 = std::max(std::ceil(x1), x0 + 2);
+    y0 = std::floor(y0) - 1, y1 = std::max(std::ceil(y1), y0 + 2);
     auto px = [&](double x) {
-        return kLeft + (std::log10(std::max(x, kFloor)) - x0) / (x1 - x0) * (kW - kLeft - kRight);
+        const double e = x > 0 ? std::log10(x) : x0;
+        return kLeft + (e - x0) / (x1 - x0) * (kW - kLeft - kRight);
     };
     auto py = [&](double y) {
-        return kH - kBottom -
-               (std::log10(std::max(y, kFloor)) - y0) / (y1 - y0) * (kH - kTop - kBottom);
+        const double e = y > 0 ? std::log10(y) : y0;
+        return kH - kBottom - (e - y0) / (y1 - y0) * (kH - kTop - kBottom);
     };
 
     std::ostringstream o;
@@ -69,7 +74,7 @@ std::string SvgPlot::render() const {
         const double y = py(std::pow(10, e));
         o << "<line x1='" << kLeft << "' y1='" << num(y) << "' x2='" << kW - kRight << "' y2='"
           << num(y) << "' stroke='#ddd'/><text x='" << kLeft - 5 << "' y='" << num(y + 4)
-          << "' text-anchor='end'>" << tick(std::pow(10, e)) << "</text>\n";
+          << "' text-anchor='end'>" << (e == y0 ? "0" : tick(std::pow(10, e))) << "</text>\n";
     }
     o << "<text x='" << (kLeft + kW - kRight) / 2 << "' y='" << kH - 12 << "' text-anchor='middle'>"
       << x_label_ << "</text>\n<text transform='translate(16," << (kTop + kH - kBottom) / 2
@@ -98,11 +103,12 @@ std::string SvgPlot::render() const {
     }
     const double ly = kTop + 20 * static_cast<double>(series_.size()) + 10;
     o << "<circle cx='" << kW - kRight + 25 << "' cy='" << ly
-      << "' r='6' fill='white' stroke='black' stroke-width='2'/>"
+      << "' r='6' fill='#888' stroke='black' stroke-width='2'/>"
       << "<text x='" << kW - kRight + 40 << "' y='" << ly + 4 << "'>Pareto front</text>\n"
-      << "<text x='" << kW - kRight + 15 << "' y='" << ly + 24
-      << "' font-size='10'>labels: substeps;</text>"
-      << "<text x='" << kW - kRight + 15 << "' y='" << ly + 36
-      << "' font-size='10'>hollow: failed</text>\n</svg>\n";
+      << "<circle cx='" << kW - kRight + 25 << "' cy='" << ly + 20
+      << "' r='4' fill='white' stroke='#888'/>"
+      << "<text x='" << kW - kRight + 40 << "' y='" << ly + 24 << "'>unstable</text>\n"
+      << "<text x='" << kW - kRight + 15 << "' y='" << ly + 44
+      << "' font-size='10'>labels: " << labels_ << "</text>\n</svg>\n";
     return o.str();
 }

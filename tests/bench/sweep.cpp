@@ -31,7 +31,8 @@ const std::vector<SceneAxis> kScenes = {{"free_motion", "tracking_error_rms_mm"}
                                         {"press_table", "max_penetration_mm"},
                                         {"lift_hold", "slip_mm"},
                                         {"stack", "tracking_error_rms_mm"},
-                                        {"jitter", "jitter_mm"}};
+                                        {"jitter", "jitter_mm"},
+                                        {"throw", "tracking_error_rms_mm"}};
 const std::vector<int> kSubsteps = {1, 2, 4, 8, 16};
 
 struct Row {
@@ -39,6 +40,7 @@ struct Row {
     int substeps = 0;
     MetricsSummary m;
     double slip_mm = NAN;
+    double release_speed_ratio = NAN;  // scenes with a throw
     bool success = false;
     double error() const;
     std::string metric;
@@ -61,7 +63,7 @@ Row measure(const Scene& scene, const SceneAxis& axis, const std::string& drive,
     options.drive = drive;
     options.substeps = substeps;
     std::vector<double> medians, p99s;
-    Row row{axis.scene, drive, substeps, {}, NAN, false, axis.metric};
+    Row row{axis.scene, drive, substeps, {}, NAN, NAN, false, axis.metric};
     for (int i = 0; i < repeat; ++i) {
         const RunResult r = run_scene(scene, options);
         medians.push_back(r.metrics.step_us_median);
@@ -72,6 +74,7 @@ Row measure(const Scene& scene, const SceneAxis& axis, const std::string& drive,
         for (const PredicateResult& p : r.predicates) {
             if (p.slip_mm) row.slip_mm = *p.slip_mm;
         }
+        if (r.metrics.throw_release) row.release_speed_ratio = r.metrics.throw_release->ratio();
     }
     // Runs are deterministic: only the timings differ between repeats.
     row.m.step_us_median = quantile(medians, 0.5);
@@ -91,6 +94,10 @@ std::vector<bool> pareto(const std::vector<Row>& rows) {
         });
     }
     return front;
+}
+
+std::string blank_if_nan(double v) {
+    return std::isnan(v) ? std::string() : std::to_string(v);
 }
 
 std::string fmt(double v, int digits = 3) {
@@ -156,8 +163,9 @@ int main(int argc, char** argv) {
     std::ofstream csv(out / "sweep.csv");
     csv << "scene,drive,substeps,step_us_median,step_us_p99,tracking_error_rms_mm,tracking_error_"
            "p99_mm,"
-           "max_penetration_mm,slip_mm,jitter_mm,ghost_jitter_mm,max_body_speed,nonfinite_count,"
-           "success,speed_clamps\n";
+           "max_penetration_mm,slip_mm,jitter_mm,ghost_jitter_mm,release_speed_ratio,max_body_"
+           "speed,"
+           "nonfinite_count,success,speed_clamps\n";
     std::ostringstream md;
     const DriveSettings& chosen = default_drive();
     std::vector<std::string> verdicts;
@@ -171,25 +179,29 @@ int main(int argc, char** argv) {
                 rows.push_back(measure(scene, axis, d.name, n, repeat));
         }
         const std::vector<bool> front = pareto(rows);
+        const bool throws = std::any_of(rows.begin(), rows.end(), [](const Row& r) {
+            return !std::isnan(r.release_speed_ratio);
+        });
         md << "\n### " << axis.scene << " (error: " << axis.metric << ")\n\n![" << axis.scene
            << "](bench/" << axis.scene << ".svg)\n\n| drive | substeps | step_us median | p99 | "
-           << axis.metric
-           << " | success | nonfinite | speed clamps | Pareto "
-              "|\n|---|---|---|---|---|---|---|---|---|\n";
+           << axis.metric << (throws ? " | release_speed_ratio" : "")
+           << " | success | nonfinite | speed clamps | Pareto |\n|---|---|---|---|---|"
+           << (throws ? "---|" : "") << "---|---|---|---|\n";
         SvgPlot plot(axis.scene + ": run time against error", "step_us median (µs per 90 Hz frame)",
-                     axis.metric);
+                     axis.metric, "substeps");
         std::map<std::string, std::vector<std::size_t>> by_drive;
         for (std::size_t i = 0; i < rows.size(); ++i) {
             const Row& r = rows[i];
             csv << r.scene << ',' << r.drive << ',' << r.substeps << ',' << r.m.step_us_median
                 << ',' << r.m.step_us_p99 << ',' << r.m.tracking_error_rms_mm << ','
                 << r.m.tracking_error_p99_mm << ',' << r.m.max_penetration_mm << ','
-                << (std::isnan(r.slip_mm) ? std::string() : std::to_string(r.slip_mm)) << ','
-                << r.m.jitter_mm << ',' << r.m.ghost_jitter_mm << ',' << r.m.max_body_speed << ','
+                << blank_if_nan(r.slip_mm) << ',' << r.m.jitter_mm << ',' << r.m.ghost_jitter_mm
+                << ',' << blank_if_nan(r.release_speed_ratio) << ',' << r.m.max_body_speed << ','
                 << r.m.nonfinite_count << ',' << (r.success ? "true" : "false") << ','
                 << r.speed_clamps << '\n';
             md << "| " << r.drive << " | " << r.substeps << " | " << fmt(r.m.step_us_median, 0)
                << " | " << fmt(r.m.step_us_p99, 0) << " | " << fmt(r.error()) << " | "
+               << (throws ? fmt(r.release_speed_ratio, 2) + " | " : "")
                << (r.success ? "yes" : "**no**") << " | " << r.m.nonfinite_count << " | "
                << r.speed_clamps << " | " << (front[i] ? "●" : "") << " |\n";
             by_drive[r.drive].push_back(i);

@@ -55,11 +55,7 @@ TEST(Gating, SwitchedOffEveryTrackedHandIsSimulated) {
 
 TEST(Gating, AFloorPlaneOnlyCountsWhenTheHandIsNearIt) {
     Simulation sim(SimulationSettings{}, Vec3(0, -9.81, 0));
-    Collider floor;
-    floor.id = "floor";
-    floor.shape.kind = ShapeKind::Plane;
-    floor.shape.normal = Vec3::UnitY();
-    sim.add_collider(floor);
+    sim.add_collider(testing::floor_plane());
     sim.step_to(1 / 90.0, right_hand_at(Vec3(0, 1.0, 0)));
     EXPECT_FALSE(sim.hand(HandSide::Right).simulated);
     sim.step_to(2 / 90.0, right_hand_at(Vec3(0, 0.06, 0), 0.0));

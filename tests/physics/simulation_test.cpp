@@ -120,10 +120,7 @@ TEST(Simulation, CollidersAreValidatedRemovedAndTeleported) {
 
 TEST(Simulation, EveryShapeAndMotionCanBeSimulated) {
     Simulation sim(SimulationSettings{}, Vec3(0, -9.81, 0));
-    Collider floor;
-    floor.id = "floor";
-    floor.shape.kind = ShapeKind::Plane;
-    sim.add_collider(floor);
+    sim.add_collider(testing::floor_plane());
     std::vector<ColliderHandle> dynamic;
     const ShapeKind kinds[] = {ShapeKind::Box, ShapeKind::Sphere, ShapeKind::Capsule,
                                ShapeKind::Cylinder, ShapeKind::Convex};

@@ -20,6 +20,14 @@ inline Collider static_box(const std::string& id, const Vec3& center, const Vec3
     return c;
 }
 
+inline Collider floor_plane() {
+    Collider c;
+    c.id = "floor";
+    c.shape.kind = ShapeKind::Plane;
+    c.motion = Motion::Static;
+    return c;
+}
+
 inline Collider dynamic_box(const std::string& id, const Vec3& center, double half, double mass) {
     Collider c = static_box(id, center, Vec3::Constant(half));
     c.motion = Motion::Dynamic;

@@ -8,23 +8,34 @@
 
 namespace physhand::testing {
 
-// One seeded, replayable run of pathological tracking (teleports, NaN/Inf, zero
-// quaternions, dropouts, frame hitches, noise bursts, a ghost driven deep into the table),
-// then clean tracking above the table.
+// One seeded, replayable run of pathological tracking of both hands over a table with a
+// cube: teleports up to 10 m (some into the cube or the table), NaN and ±Inf in any
+// component, zero and non-unit quaternions, dropouts from one frame to 3 s, 200 ms frame
+// hitches, noise bursts, both hands in one place, and both hands squeezing the cube from
+// either side; then clean tracking above the table.
 struct PathologyResult {
     int frames = 0;
-    int nonfinite_count = 0;      // frames with a non-finite hand or cube state
-    double max_body_speed = 0.0;  // m/s, fastest body in any frame
-    double speed_limit = 0.0;     // m/s, the configured limit it must not exceed
-    // Clean tracking until every joint not in contact (some must be) is within kRecoveredM;
-    // inf: never.
+    int nonfinite_count = 0;  // frames in which Simulation::state_is_finite() was false
+    // m/s: the fastest the dynamics drove any body (Simulation::last_max_body_speed), and
+    // the fastest hand joint or body the app was given; the limit bounds the second always
+    // and, for the shipped drives, the first too (they never need the limit).
+    double max_body_speed = 0.0;
+    double max_published_speed = 0.0;
+    double speed_limit = 0.0;
+    std::uint64_t speed_clamps = 0;
+    // Clean tracking until, in both hands, every joint that touched nothing in the last
+    // 0.25 s (as tracking error counts them, METRICS.md) is within kRecoveredM of its
+    // ghost; inf: not within kRecoveryWindowS.
     double recovery_s = 0.0;
 };
 inline constexpr double kRecoveredM = 0.005;
 inline constexpr double kMaxRecoveryS = 1.0;
+inline constexpr double kRecoveryWindowS = 2.0;
 
 PathologyResult run_pathology(const DriveSettings& drive, std::uint64_t seed);
-bool passed(const PathologyResult& r);
+// `drive` is the one that ran: the paper's explicit drive is the unprotected reference, so
+// only its published speeds are held to the limit.
+bool passed(const PathologyResult& r, const DriveSettings& drive);
 
 // Which runs to make, from the environment (the test suite's short run when unset):
 //   PHYSHAND_STRESS_SEEDS=A or A-B    seeds (default 1-3)

@@ -140,5 +140,48 @@ TEST(RunMetrics, TrackingErrorSkipsJointsInRecentContact) {
     EXPECT_DOUBLE_EQ(s.max_body_speed, 2.0);
 }
 
+// A body's speed 50 ms after its last contact over the ghost palm's speed then
+// (METRICS.md); only a release at throwing speed counts as a throw.
+TEST(RunMetrics, ReleaseSpeedRatioOfTheFastestThrow) {
+    RunMetrics m;
+    const HandPose still = pose_hand(HandSide::Right, Pose{}, HandArticulation{});
+    const std::array<bool, kJointCount> none{};
+    auto frame = [&](int f, double palm_speed, const Vec3& cube_velocity, bool touched) {
+        const double t = f / 100.0;
+        HandPose ghost = still;
+        // The palm has moved palm_speed / 100 since the previous frame.
+        ghost.joints[index_of(Joint::Palm)].position.x() = palm_speed * t;
+        m.add_hand(t, HandSide::Right, ghost, ghost, none);
+        BodyState cube;
+        cube.linear_velocity = cube_velocity;
+        cube.touched_by[static_cast<int>(HandSide::Right)] = touched;
+        m.add_body(t, 0, cube);
+        m.add_frame(1.0, 0.0, 0.0, false);
+    };
+    for (int f = 0; f <= 10; ++f) frame(f, 2.0, Vec3::Zero(), true);     // carried at 2 m/s
+    for (int f = 11; f <= 20; ++f) frame(f, 2.0, Vec3(3, 0, 0), false);  // let go at 0.10 s
+    const MetricsSummary s = m.summary();
+    ASSERT_TRUE(s.throw_release);
+    EXPECT_EQ(s.throw_release->body, 0u);
+    EXPECT_DOUBLE_EQ(s.throw_release->time_s, 0.10);
+    EXPECT_NEAR(s.throw_release->hand_speed, 2.0, 1e-9);
+    EXPECT_NEAR(s.throw_release->palm_speed, 2.0, 1e-9);  // at 0.15 s
+    EXPECT_NEAR(s.throw_release->ratio(), 1.5, 1e-9);
+    EXPECT_EQ(s.frames_touching_bodies[static_cast<int>(HandSide::Right)], 11);
+
+    RunMetrics placing;  // the same, with the palm at 0.2 m/s: a body set down, not thrown
+    for (int f = 0; f <= 20; ++f) {
+        const double t = f / 100.0;
+        HandPose ghost = still;
+        ghost.joints[index_of(Joint::Palm)].position.x() = 0.2 * t;
+        placing.add_hand(t, HandSide::Right, ghost, ghost, none);
+        BodyState cube;
+        cube.touched_by[static_cast<int>(HandSide::Right)] = f <= 10;
+        placing.add_body(t, 0, cube);
+        placing.add_frame(1.0, 0.0, 0.0, false);
+    }
+    EXPECT_FALSE(placing.summary().throw_release);
+}
+
 }  // namespace
 }  // namespace physhand

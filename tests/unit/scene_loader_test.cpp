@@ -414,6 +414,17 @@ const ErrorCase kErrorCases[] = {
          collider(s, 6)["vertices"][2] = {0, 0};
      },
      "colliders[6].vertices[2]: expected an array of 3 numbers"},
+    {"ConvexFlat",
+     [](json& s) {
+         collider(s, 6)["vertices"] = {{0, 0, 0}, {0.1, 0, 0}, {0, 0, 0.1}, {0.1, 0, 0.1}};
+     },
+     R"(colliders[6]: collider "rock": vertices span no volume)"},
+    {"MeshOnlySlivers",
+     [](json& s) {
+         collider(s, 7)["vertices"] = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
+         collider(s, 7)["indices"] = {{0, 1, 2}};
+     },
+     R"(colliders[7]: collider "ramp": every mesh triangle has zero area)"},
     {"MeshTooFewVertices", [](json& s) { collider(s, 7)["vertices"].erase(2); },
      "colliders[7].vertices: expected an array of at least 3 points"},
     {"MeshNoTriangles", [](json& s) { collider(s, 7)["indices"] = json::array(); },
