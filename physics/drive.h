@@ -5,6 +5,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ghost_filter.h"
 #include "pose.h"
 
 namespace physhand {
@@ -30,7 +31,8 @@ struct DriveSettings {
     bool drive_orientation = false;
     // N per body (torque: scaled likewise); 0: none of its own. kMaxDriveForce caps it.
     double force_limit = 0.0;
-    int substeps = 4;  // per 90 Hz frame
+    int substeps = 4;          // per 90 Hz frame
+    GhostSmoothing smoothing;  // of the ghost before the drive follows it
 };
 
 // No drive force exceeds this, whatever the limit: past it, an explicit drive's overshoot

@@ -26,10 +26,14 @@ SimulationSettings settings_for(const RunOptions& options) {
     return settings;
 }
 
-RunResult run_scene(const Scene& input, const RunOptions& options) {
+RunResult run_scene(const Scene& scene, const RunOptions& options) {
+    return run_scene(scene, settings_for(options), options.seed);
+}
+
+RunResult run_scene(const Scene& input, const SimulationSettings& settings,
+                    std::optional<std::uint64_t> seed) {
     Scene scene = input;
-    if (options.seed) scene.tracking.seed = *options.seed;
-    const SimulationSettings settings = settings_for(options);
+    if (seed) scene.tracking.seed = *seed;
     Simulation sim(settings, scene.gravity);
 
     std::vector<ColliderHandle> handles;

@@ -39,5 +39,8 @@ SimulationSettings settings_for(const RunOptions& options);
 // Plays a scene headless in physics/ alone: the tracked hands drive the physical hands
 // frame by frame at 90 Hz, and the predicates and metrics are evaluated.
 RunResult run_scene(const Scene& scene, const RunOptions& options);
+// The same with settings of one's own (a variant of a drive, say).
+RunResult run_scene(const Scene& scene, const SimulationSettings& settings,
+                    std::optional<std::uint64_t> seed = std::nullopt);
 
 }  // namespace physhand

@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "collider_shape.h"
+#include "ghost_filter.h"
 #include "physical_hand.h"
 #include "world.h"
 
@@ -63,7 +64,10 @@ struct Simulation::HandSlot {
     std::unique_ptr<PhysicalHand> body;  // built from the first valid ghost
     HandPose ghost;                      // latest valid ghost
     HandPose previous_ghost;             // ghost at the previous step
-    bool tracked = false;                // this step's sample was valid
+    HandPose target;                     // what the drive follows: the ghost, smoothed
+    HandPose previous_target;            // target at the previous step
+    GhostFilter smoothing;
+    bool tracked = false;  // this step's sample was valid
     bool have_ghost = false;
     bool simulated = false;
     double last_tracked_time = -std::numeric_limits<double>::infinity();
@@ -155,10 +159,12 @@ bool Simulation::state_is_finite() const {
     return world_->colliders_finite();
 }
 
-void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input) {
+void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input, double step_dt) {
     HandPose sample = input;
     const bool valid = sample.active && sanitise(sample);
     if (sample.active && !valid) ++guards_.rejected_samples;
+    const bool touching = std::any_of(slot.state.in_contact.begin(), slot.state.in_contact.end(),
+                                      [](bool c) { return c; });
 
     const double frame_dt = 1.0 / settings_.frame_rate_hz;
     if (valid) {
@@ -174,19 +180,27 @@ void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input) {
                 settings_.reseat_distance;
         const bool reseat = jump > settings_.reseat_distance || lost_hand ||
                             time_s_ - slot.last_tracked_time > settings_.dropout_grace_s;
-        slot.previous_ghost = slot.have_ghost && !reseat ? slot.ghost : sample;
+        const bool continues = slot.have_ghost && !reseat;
+        // A hand that holds or presses something follows the ghost itself: how hard it grips
+        // is how far the ghost reaches into the object, which smoothing would delay.
+        if (!continues || touching) slot.smoothing.reset(sample);
+        slot.previous_ghost = continues ? slot.ghost : sample;
         slot.ghost = sample;
+        slot.previous_target = continues ? slot.target : sample;
+        slot.target = slot.smoothing.apply(sample, step_dt, settings_.drive.smoothing);
         slot.have_ghost = true;
         slot.tracked = true;
         slot.last_tracked_time = time_s_;
         if (reseat && slot.simulated) {
             ++guards_.reseats;
-            slot.body->seat(slot.ghost, slot.previous_ghost, frame_dt);
+            slot.body->seat(slot.target, slot.previous_target, frame_dt);
             slot.body->set_contact_response(false);
         }
     } else {
         slot.tracked = false;
-        slot.previous_ghost = slot.ghost;  // hold still at the last valid pose
+        // Hold still at the last valid pose.
+        slot.previous_ghost = slot.ghost;
+        slot.previous_target = slot.target;
         const bool in_grace = time_s_ - slot.last_tracked_time <= settings_.dropout_grace_s;
         if (!(slot.simulated && in_grace)) {
             if (slot.body) slot.body->detach(*world_);
@@ -204,16 +218,14 @@ void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input) {
         hi = hi.cwiseMax(phi);
     }
     const double reach = settings_.gate_reach * (slot.simulated ? kGateHysteresis : 1.0);
-    const bool in_contact = std::any_of(slot.state.in_contact.begin(), slot.state.in_contact.end(),
-                                        [](bool c) { return c; });
     const bool wanted =
-        !settings_.gating || in_contact || !slot.tracked ||
+        !settings_.gating || touching || !slot.tracked ||
         world_->any_collider_near(lo - Vec3::Constant(reach), hi + Vec3::Constant(reach));
     if (wanted && !slot.simulated) {
         if (!slot.body) {
             slot.body = std::make_unique<PhysicalHand>(slot.side, settings_.drive, slot.ghost);
         }
-        slot.body->seat(slot.previous_ghost, slot.previous_ghost, frame_dt);
+        slot.body->seat(slot.previous_target, slot.previous_target, frame_dt);
         slot.body->attach(*world_);
         // Woken inside something (tracking began there): pass through until clear.
         slot.body->set_contact_response(false);
@@ -242,7 +254,8 @@ void Simulation::step_to(double time_s, const std::array<HandPose, 2>& ghosts) {
     time_s_ = static_cast<double>(tick_) / rate;
 
     for (HandSide side : kHandSides) {
-        update_hand_gate(*hands_[static_cast<int>(side)], ghosts[static_cast<int>(side)]);
+        update_hand_gate(*hands_[static_cast<int>(side)], ghosts[static_cast<int>(side)],
+                         substeps / rate);
     }
     step_substeps(substeps);
     tick_ = target;
@@ -271,8 +284,8 @@ void Simulation::step_substeps(int substeps) {
         const double fraction = static_cast<double>(i + 1) / substeps;
         for (auto& slot : hands_) {
             if (!slot->simulated) continue;
-            const HandPose target = interpolate_hand(slot->previous_ghost, slot->ghost, fraction);
-            slot->body->drive(target, slot->previous_ghost, slot->ghost, step_dt, h);
+            const HandPose target = interpolate_hand(slot->previous_target, slot->target, fraction);
+            slot->body->drive(target, slot->previous_target, slot->target, step_dt, h);
         }
         const SpeedCheck speeds = world_->step(h, fraction);
         guards_.speed_clamps += static_cast<std::uint64_t>(speeds.clamped);
@@ -324,7 +337,7 @@ void Simulation::publish_hand(HandSlot& slot) {
     }
     s.simulated = slot.simulated;
     if (slot.simulated) {
-        slot.body->read(slot.ghost, s);
+        slot.body->read(slot.target, s);
         s.joints.active = true;
         return;
     }

@@ -112,7 +112,9 @@ class Simulation {
   private:
     struct HandSlot;
     void step_substeps(int substeps);
-    void update_hand_gate(HandSlot& slot, const HandPose& ghost);
+    // Takes the step's ghost sample (`step_dt` after the last) and decides whether the hand
+    // is simulated in it.
+    void update_hand_gate(HandSlot& slot, const HandPose& ghost, double step_dt);
     void collect_contacts();
     void publish_hand(HandSlot& slot);
 

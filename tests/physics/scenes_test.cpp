@@ -47,6 +47,17 @@ TEST(SampleScenes, DefaultHandPressesAndGripsWithoutSinkingOrChatter) {
     EXPECT_LT(*lift.predicates[0].slip_mm, 0.01);
 }
 
+// The default drive follows a smoothed ghost: a still hand under tracking noise moves less
+// than its ghost, where the unsmoothed drive passes the noise on whole.
+TEST(SampleScenes, StillHandIsSteadierThanItsGhost) {
+    const Scene jitter = testing::sample_scene("jitter");
+    const RunResult smoothed = run_scene(jitter, RunOptions{});
+    EXPECT_LT(smoothed.metrics.jitter_mm, 0.5 * smoothed.metrics.ghost_jitter_mm);
+    SimulationSettings raw;
+    raw.drive.smoothing = GhostSmoothing{};
+    EXPECT_GT(run_scene(jitter, raw).metrics.jitter_mm, 0.9 * smoothed.metrics.ghost_jitter_mm);
+}
+
 TEST(SampleScenes, HeldObjectBarelySlipsAndGatedHandsAreExact) {
     const RunResult lift = run_scene(testing::sample_scene("lift_hold"), RunOptions{});
     ASSERT_TRUE(lift.predicates.at(0).slip_mm);

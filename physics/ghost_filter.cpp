@@ -1,0 +1,48 @@
+#include "ghost_filter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace physhand {
+
+namespace {
+
+// The weight of a new sample in a first-order low-pass at `cutoff_hz`.
+double blend(double cutoff_hz, double dt) {
+    const double tau = 1.0 / (2.0 * std::numbers::pi * cutoff_hz);
+    return 1.0 / (1.0 + tau / dt);
+}
+
+}  // namespace
+
+void GhostFilter::reset(const HandPose& ghost) {
+    state_ = ghost;
+    velocity_.fill(Vec3::Zero());
+}
+
+HandPose GhostFilter::apply(const HandPose& ghost, double dt, const GhostSmoothing& smoothing) {
+    if (!smoothing.enabled() || !(dt > 0.0)) {
+        reset(ghost);
+        return ghost;
+    }
+    const double a_velocity = blend(smoothing.derivative_cutoff_hz, dt);
+    Vec3 mean = Vec3::Zero();
+    for (std::size_t j = 0; j < kJointCount; ++j) {
+        const Vec3 raw = (ghost.joints[j].position - state_.joints[j].position) / dt;
+        velocity_[j] += a_velocity * (raw - velocity_[j]);
+        mean += velocity_[j];
+    }
+    const double hand_speed = mean.norm() / kJointCount;
+    HandPose out = ghost;
+    for (std::size_t j = 0; j < kJointCount; ++j) {
+        const double speed =
+            std::max(hand_speed, velocity_[j].norm() - smoothing.joint_speed_floor);
+        const double a = blend(smoothing.min_cutoff_hz + smoothing.beta * speed, dt);
+        out.joints[j] = interpolate(state_.joints[j], ghost.joints[j], a);
+    }
+    state_ = out;
+    return out;
+}
+
+}  // namespace physhand
