@@ -106,10 +106,10 @@ class OverlayRenderTest : public ::testing::Test {
     void SetUp() override {
         std::string reason;
         vulkan_ = HeadlessVulkan::create(true, &messages_, reason);
-        if (!vulkan_) {
-            GTEST_SKIP() << "no Vulkan device can be created: " << reason;
-        }
+        ASSERT_NE(vulkan_, nullptr) << "no Vulkan device can be created: " << reason;
         if (!vulkan_->validating()) {
+            ASSERT_FALSE(PHYSHAND_VULKAN_VALIDATION_REQUIRED)
+                << "VK_LAYER_KHRONOS_validation, which the build found, is not active";
             std::cout << "note: VK_LAYER_KHRONOS_validation not installed; running without\n";
         }
         make_renderer(VK_FORMAT_R8G8B8A8_SRGB, false);
