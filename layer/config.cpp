@@ -34,6 +34,40 @@ int get_int(const json& value, const std::string& key) {
     return value.get<int>();
 }
 
+// A fraction from 0 to 1: a colour channel or an opacity.
+float get_fraction(const json& value, const std::string& key, const char* expected) {
+    if (!value.is_number() || !(value.get<double>() >= 0.0 && value.get<double>() <= 1.0)) {
+        throw std::runtime_error(key + ": expected " + expected);
+    }
+    return value.get<float>();
+}
+
+overlay::Color parse_color(const json& value, const std::string& key) {
+    constexpr const char* kExpected = "an array of 3 numbers from 0 to 1 (sRGB red, green, blue)";
+    if (!value.is_array() || value.size() != 3) {
+        throw std::runtime_error(key + ": expected " + kExpected);
+    }
+    return {get_fraction(value[0], key, kExpected), get_fraction(value[1], key, kExpected),
+            get_fraction(value[2], key, kExpected)};
+}
+
+// Absent colours keep the overlay's own.
+void parse_colors(const json& object, overlay::Settings& drawing) {
+    if (!object.is_object()) throw std::runtime_error("colors: expected an object");
+    for (const auto& [key, value] : object.items()) {
+        const std::string path = "colors." + key;
+        if (key == "left") {
+            drawing.hand_colors[0] = parse_color(value, path);
+        } else if (key == "right") {
+            drawing.hand_colors[1] = parse_color(value, path);
+        } else if (key == "contact") {
+            drawing.contact_tint = parse_color(value, path);
+        } else {
+            throw std::runtime_error(path + ": unknown key (known: left, right, contact)");
+        }
+    }
+}
+
 std::string drive_names() {
     std::string names;
     for (const DriveSettings& d : builtin_drives()) names += (names.empty() ? "" : ", ") + d.name;
@@ -145,7 +179,11 @@ Config parse_config(const std::string& json_text, const std::filesystem::path& b
         } else if (key == "overlay") {
             config.overlay = get_bool(value, key);
         } else if (key == "tint") {
-            config.tint = get_bool(value, key);
+            config.drawing.tint = get_bool(value, key);
+        } else if (key == "colors") {
+            parse_colors(value, config.drawing);
+        } else if (key == "ghost_opacity") {
+            config.drawing.ghost_alpha = get_fraction(value, key, "a number from 0 to 1");
         } else if (key == "drive") {
             config.drive = parse_drive(value);
         } else if (key == "colliders") {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "drive.h"
+#include "overlay_renderer.h"
 #include "scene.h"
 
 namespace physhand::layer {
@@ -14,8 +15,9 @@ namespace physhand::layer {
 // The user's settings for the layer (a JSON file; see load_config).
 struct Config {
     bool enabled = true;  // false: every call passes straight through
-    bool overlay = true;  // draw the ghost hand
-    bool tint = true;     // tint joints in contact
+    bool overlay = true;  // false: no overlay at all (neither ghost nor physical hands drawn)
+    // How the overlay draws the hands: colours, ghost opacity, contact tint on or off.
+    overlay::Settings drawing;
     DriveSettings drive = default_drive();
     // Static colliders in the STAGE frame, for apps that declare none themselves.
     std::vector<Collider> colliders;

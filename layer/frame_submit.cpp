@@ -1,5 +1,6 @@
 #include <chrono>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "dispatch.h"
@@ -38,8 +39,8 @@ const XrCompositionLayerProjection* find_projection(const XrFrameEndInfo& info) 
 // The overlay layer for this frame (the simulation already stepped to its time), or null
 // when there is nothing to draw or no room for it. Session locked. Throws on any failure.
 const XrCompositionLayerProjection* draw_overlay(SessionState& state, const XrFrameEndInfo& info) {
-    if (info.layerCount >= state.max_layer_count || info.displayTime <= 0 || !state.simulation ||
-        (info.layerCount > 0 && info.layers == nullptr)) {
+    if (info.layerCount >= state.graphics.maxLayerCount || info.displayTime <= 0 ||
+        !state.simulation || (info.layerCount > 0 && info.layers == nullptr)) {
         return nullptr;
     }
     const XrCompositionLayerProjection* app_layer = find_projection(info);
@@ -70,37 +71,58 @@ const XrCompositionLayerProjection* draw_overlay(SessionState& state, const XrFr
     }
     // Created with the first frame that has hands to draw: sessions without them pay nothing.
     if (!state.overlay) {
-        state.overlay = std::make_unique<OverlaySession>(
-            state.instance->next, state.session, *state.vulkan, state.instance->config.tint);
+        state.overlay =
+            std::make_unique<OverlaySession>(state.instance->next, state.session, *state.vulkan,
+                                             state.graphics, state.instance->config.drawing);
     }
     return state.overlay->draw(*app_layer, hands);
 }
 
-// Points `submitted` at the app's layers with the overlay's after them, when it drew one.
-// Session locked. Any failure turns the overlay off for the session; the app's frame then
-// goes through unchanged, now and from now on.
-void append_overlay(SessionState& state, const XrFrameEndInfo& info, XrFrameEndInfo& submitted) {
+// Turns the overlay off for the rest of the session, saying why once. Session locked.
+void turn_overlay_off(SessionState& state, const char* why) {
+    log_failure("xrEndFrame (the overlay is off for this session)", why);
+    state.overlay.reset();
+    state.vulkan.reset();
+}
+
+// Points `submitted` at the app's layers with the overlay's after them, when it drew one;
+// returns whether it did. Session locked. Any failure turns the overlay off for the
+// session; the app's frame then goes through unchanged, now and from now on.
+bool append_overlay(SessionState& state, const XrFrameEndInfo& info, XrFrameEndInfo& submitted) {
     const auto start = std::chrono::steady_clock::now();
     try {
         const XrCompositionLayerProjection* layer = draw_overlay(state, info);
-        if (layer != nullptr) {
-            // A copy: the app's array is never modified.
-            state.submitted_layers.assign(info.layers, info.layers + info.layerCount);
-            state.submitted_layers.push_back(
-                reinterpret_cast<const XrCompositionLayerBaseHeader*>(layer));
-            submitted.layers = state.submitted_layers.data();
-            submitted.layerCount = static_cast<uint32_t>(state.submitted_layers.size());
-        }
-        if (state.overlay) {
-            state.overlay->record_cpu_time(
-                std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start)
-                    .count());
-        }
+        if (layer == nullptr) return false;
+        // A copy: the app's array is never modified.
+        state.submitted_layers.assign(info.layers, info.layers + info.layerCount);
+        state.submitted_layers.push_back(
+            reinterpret_cast<const XrCompositionLayerBaseHeader*>(layer));
+        submitted.layers = state.submitted_layers.data();
+        submitted.layerCount = static_cast<uint32_t>(state.submitted_layers.size());
+        state.overlay->record_drawn_frame(std::chrono::steady_clock::now() - start);
+        return true;
     } catch (const std::exception& e) {
-        log_failure("xrEndFrame (the overlay is off for this session)", e.what());
-        state.overlay.reset();
-        state.vulkan.reset();
-        submitted = info;
+        turn_overlay_off(state, e.what());
+    } catch (...) {
+        turn_overlay_off(state, "unknown exception");
+    }
+    submitted = info;
+    return false;
+}
+
+// Errors the app's own frame gets just the same, whatever the overlay appended to it: the
+// session's state or the call's order, not the layers.
+bool is_frame_independent(XrResult result) {
+    switch (result) {
+        case XR_ERROR_SESSION_LOST:
+        case XR_ERROR_INSTANCE_LOST:
+        case XR_ERROR_SESSION_NOT_RUNNING:
+        case XR_ERROR_CALL_ORDER_INVALID:
+        case XR_ERROR_TIME_INVALID:
+        case XR_ERROR_HANDLE_INVALID:
+            return true;
+        default:
+            return false;
     }
 }
 
@@ -123,16 +145,32 @@ XRAPI_ATTR XrResult XRAPI_CALL EndFrame(XrSession session, const XrFrameEndInfo*
         if (!state) return XR_ERROR_HANDLE_INVALID;
         if (frameEndInfo == nullptr) return state->instance->next.EndFrame(session, frameEndInfo);
         XrFrameEndInfo submitted = *frameEndInfo;
+        bool appended = false;
         {
             std::lock_guard lock(state->mutex);
             if (state->alive) {
                 step_frame(*state, frameEndInfo->displayTime);
-                if (state->vulkan) append_overlay(*state, *frameEndInfo, submitted);
+                if (state->vulkan) appended = append_overlay(*state, *frameEndInfo, submitted);
             }
         }
         // Unlocked: the runtime may block here, and other threads may locate hands meanwhile.
         // The app synchronises xrEndFrame with xrDestroySession, so the layers stay alive.
-        return state->instance->next.EndFrame(session, &submitted);
+        const XrResult result = state->instance->next.EndFrame(session, &submitted);
+        if (XR_SUCCEEDED(result) || !appended || is_frame_independent(result)) {
+            return result;
+        }
+        // The runtime refused the frame with the overlay's layer: the app's own frame goes
+        // in its place. When that succeeds, the overlay was at fault and is off from now on;
+        // when it fails too, the app's frame was, and the app gets its own error.
+        const XrResult resubmitted = state->instance->next.EndFrame(session, frameEndInfo);
+        if (XR_SUCCEEDED(resubmitted)) {
+            std::lock_guard lock(state->mutex);
+            const std::string what =
+                "the runtime refused the frame with the overlay's layer (XrResult " +
+                std::to_string(result) + "); the app's frame was submitted alone";
+            turn_overlay_off(*state, what.c_str());
+        }
+        return resubmitted;
     });
 }
 

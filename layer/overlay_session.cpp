@@ -1,21 +1,21 @@
 #include "overlay_session.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "hand_skeleton.h"
 #include "layer_log.h"
+#include "overlay_views.h"
+#include "run_metrics.h"
 
 namespace physhand::layer {
 
 namespace {
 
-// Keeps software rasterisers (lavapipe) fast; the field of view is unchanged, so the
-// overlay is only drawn at a lower resolution than the app's views.
-constexpr uint32_t kMaxExtent = 1024;
+using Clock = std::chrono::steady_clock;
 
 void check(XrResult result, const char* call) {
     if (XR_FAILED(result)) {
@@ -36,15 +36,6 @@ VkFormat pick_format(const NextDispatch& next, XrSession session) {
         if (std::find(formats.begin(), formats.end(), preferred) != formats.end()) return preferred;
     }
     throw std::runtime_error("the runtime offers no 8-bit sRGB swapchain format");
-}
-
-VkExtent2D capped(const XrExtent2Di& size) {
-    const double scale = std::min({1.0, double(kMaxExtent) / std::max(size.width, 1),
-                                   double(kMaxExtent) / std::max(size.height, 1)});
-    const auto scaled = [&](int32_t v) {
-        return std::max<uint32_t>(1, static_cast<uint32_t>(std::lround(v * scale)));
-    };
-    return {scaled(size.width), scaled(size.height)};
 }
 
 bool same_extent(const VkExtent2D& a, const VkExtent2D& b) {
@@ -73,8 +64,16 @@ std::array<int, overlay::kJointCount> joint_parents() {
 }  // namespace
 
 OverlaySession::OverlaySession(const NextDispatch& next, XrSession session,
-                               const VulkanBinding& binding, bool tint)
-    : next_(next), session_(session), format_(pick_format(next, session)) {
+                               const VulkanBinding& binding,
+                               const XrSystemGraphicsProperties& limits,
+                               const overlay::Settings& drawing)
+    : next_(next),
+      session_(session),
+      limits_(limits),
+      format_(pick_format(next, session)),
+      settings_(drawing) {
+    const char* stats = std::getenv("PHYSHAND_OVERLAY_STATS");
+    collect_stats_ = stats != nullptr && std::string(stats) == "1";
     overlay::CreateInfo info;
     info.instance = binding.instance;
     info.get_instance_proc_addr = binding.get_instance_proc_addr;
@@ -83,30 +82,38 @@ OverlaySession::OverlaySession(const NextDispatch& next, XrSession session,
     info.queue_family_index = binding.queue_family_index;
     info.queue = binding.queue;
     info.color_format = format_;
+    info.gpu_timestamps = collect_stats_;
     renderer_ = std::make_unique<overlay::Renderer>(info);
-    settings_.tint = tint;
-    const char* stats = std::getenv("PHYSHAND_OVERLAY_STATS");
-    collect_stats_ = stats != nullptr && std::string(stats) == "1";
 }
 
 OverlaySession::~OverlaySession() {
     destroy_swapchain();
-    if (collect_stats_ && !cpu_us_.empty()) {
-        auto middle = cpu_us_.begin() + static_cast<std::ptrdiff_t>(cpu_us_.size() / 2);
-        std::nth_element(cpu_us_.begin(), middle, cpu_us_.end());
-        log_once("overlay CPU time per xrEndFrame: median " + std::to_string(*middle) +
-                 " us over " + std::to_string(cpu_us_.size()) + " frames");
-    }
+    if (!collect_stats_ || cpu_us_.empty()) return;
+    const std::string gpu = gpu_us_.empty()
+                                ? "not measured (the queue has no timestamps)"
+                                : "median " + std::to_string(quantile(gpu_us_, 0.5)) + " us over " +
+                                      std::to_string(gpu_us_.size()) + " frames";
+    log_once("overlay per drawn frame: CPU time in xrEndFrame median " +
+             std::to_string(quantile(cpu_us_, 0.5)) + " us over " + std::to_string(cpu_us_.size()) +
+             " frames; GPU time " + gpu);
 }
 
-void OverlaySession::record_cpu_time(double microseconds) {
-    if (collect_stats_) cpu_us_.push_back(microseconds);
+void OverlaySession::record_drawn_frame(Clock::duration elapsed) {
+    if (!collect_stats_) return;
+    cpu_us_.push_back(std::chrono::duration<double, std::micro>(elapsed - runtime_time_).count());
+    // The renderer times a frame once its slot comes round again, so each drawn frame brings
+    // an earlier frame's GPU time.
+    const overlay::Timings timings = renderer_->timings();
+    if (timings.gpu_frames != gpu_frames_seen_) {
+        gpu_frames_seen_ = timings.gpu_frames;
+        gpu_us_.push_back(timings.gpu_ms * 1000.0);
+    }
 }
 
 void OverlaySession::destroy_swapchain() noexcept {
     if (swapchain_ == XR_NULL_HANDLE) return;
     try {
-        renderer_->wait_idle();
+        // The first call waits for every frame in flight; the others find none.
         for (const VkImage image : images_) renderer_->forget_image(image);
     } catch (const std::exception& e) {
         log_failure("destroying the overlay swapchain", e.what());
@@ -118,11 +125,7 @@ void OverlaySession::destroy_swapchain() noexcept {
 }
 
 // One array swapchain with a layer per view, recreated when the app's views change size.
-void OverlaySession::ensure_swapchain(const XrCompositionLayerProjection& app_layer) {
-    std::vector<VkExtent2D> extents;
-    for (uint32_t i = 0; i < app_layer.viewCount; ++i) {
-        extents.push_back(capped(app_layer.views[i].subImage.imageRect.extent));
-    }
+void OverlaySession::ensure_swapchain(std::vector<VkExtent2D> extents) {
     if (swapchain_ != XR_NULL_HANDLE &&
         std::equal(extents.begin(), extents.end(), extents_.begin(), extents_.end(), same_extent)) {
         return;
@@ -138,7 +141,7 @@ void OverlaySession::ensure_swapchain(const XrCompositionLayerProjection& app_la
         info.height = std::max(info.height, e.height);
     }
     info.faceCount = 1;
-    info.arraySize = app_layer.viewCount;
+    info.arraySize = static_cast<uint32_t>(extents.size());
     info.mipCount = 1;
     check(next_.CreateSwapchain(session_, &info, &swapchain_), "xrCreateSwapchain");
     uint32_t count = 0;
@@ -157,13 +160,25 @@ void OverlaySession::ensure_swapchain(const XrCompositionLayerProjection& app_la
 
 const XrCompositionLayerProjection* OverlaySession::draw(
     const XrCompositionLayerProjection& app_layer, const std::array<overlay::Hand, 2>& hands) {
-    ensure_swapchain(app_layer);
+    std::optional<std::vector<VkExtent2D>> extents = overlay_extents(app_layer, limits_);
+    if (!extents) return nullptr;
+    runtime_time_ = {};
+    // Times a call of the runtime's, which is not the overlay's own work.
+    const auto in_runtime = [&](auto&& call) {
+        const Clock::time_point start = Clock::now();
+        const XrResult result = call();
+        runtime_time_ += Clock::now() - start;
+        return result;
+    };
+    ensure_swapchain(std::move(*extents));
     uint32_t index = 0;
-    check(next_.AcquireSwapchainImage(swapchain_, nullptr, &index), "xrAcquireSwapchainImage");
+    check(in_runtime([&] { return next_.AcquireSwapchainImage(swapchain_, nullptr, &index); }),
+          "xrAcquireSwapchainImage");
     XrSwapchainImageWaitInfo wait{};
     wait.type = XR_TYPE_SWAPCHAIN_IMAGE_WAIT_INFO;
     wait.timeout = XR_INFINITE_DURATION;
-    check(next_.WaitSwapchainImage(swapchain_, &wait), "xrWaitSwapchainImage");
+    check(in_runtime([&] { return next_.WaitSwapchainImage(swapchain_, &wait); }),
+          "xrWaitSwapchainImage");
 
     views_.clear();
     layer_views_.clear();
@@ -194,7 +209,8 @@ const XrCompositionLayerProjection* OverlaySession::draw(
         next_.ReleaseSwapchainImage(swapchain_, nullptr);
         throw;
     }
-    check(next_.ReleaseSwapchainImage(swapchain_, nullptr), "xrReleaseSwapchainImage");
+    check(in_runtime([&] { return next_.ReleaseSwapchainImage(swapchain_, nullptr); }),
+          "xrReleaseSwapchainImage");
     if (!drawn) return nullptr;
 
     layer_.type = XR_TYPE_COMPOSITION_LAYER_PROJECTION;

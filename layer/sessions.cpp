@@ -91,7 +91,7 @@ void read_system(SessionState& state, XrSystemId system) {
                  std::to_string(result) + "; no overlay and no hand tracking of the layer's own");
         return;
     }
-    state.max_layer_count = properties.graphicsProperties.maxLayerCount;
+    state.graphics = properties.graphicsProperties;
     state.hand_tracking = properties.next != nullptr && hand_tracking.supportsHandTracking;
 }
 
@@ -104,7 +104,7 @@ void set_up_overlay(SessionState& state, const XrSessionCreateInfo& info) {
             log_once("xrCreateSession: not a Vulkan session; the hands are not drawn");
             return;
         }
-        if (state.max_layer_count == 0) {
+        if (state.graphics.maxLayerCount == 0) {
             throw std::runtime_error("the system's composition layer count is unknown");
         }
     } catch (const std::exception& e) {

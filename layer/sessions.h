@@ -72,7 +72,8 @@ class SessionState {
     // The app's Vulkan objects; empty for other graphics APIs, headless sessions, with the
     // overlay turned off in the config or after it failed: then there is no overlay.
     std::optional<VulkanBinding> vulkan;
-    uint32_t max_layer_count = 0;             // the system's, for the overlay's extra layer
+    // The system's: room for the overlay's extra layer, its largest swapchain.
+    XrSystemGraphicsProperties graphics{};
     std::unique_ptr<OverlaySession> overlay;  // created with the first frame it draws
     std::vector<const XrCompositionLayerBaseHeader*> submitted_layers;  // the app's + overlay
 

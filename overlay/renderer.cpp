@@ -214,6 +214,7 @@ void Renderer::Impl::retire(FrameSlot& slot) {
                                  VK_QUERY_RESULT_64_BIT) == VK_SUCCESS) {
         timings.gpu_ms = static_cast<double>((ticks[1] - ticks[0]) & timestamp_mask) *
                          timestamp_period_ns * 1e-6;
+        ++timings.gpu_frames;
     }
 }
 

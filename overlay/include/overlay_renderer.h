@@ -107,6 +107,8 @@ struct Timings {
     // GPU time of the newest frame seen complete (when render() reuses its slot, or by
     // wait_idle()); -1 without gpu_timestamps or when the queue cannot time.
     double gpu_ms = -1.0;
+    // Frames whose GPU time has been read: gpu_ms is a new frame's whenever this grows.
+    uint64_t gpu_frames = 0;
 };
 
 // Not thread-safe; the caller synchronises access to the queue (as OpenXR requires of

@@ -59,19 +59,8 @@ void write_png(const std::filesystem::path& path, const Rgba8Image& image) {
 std::optional<CaptureSettings> capture_settings() {
     const char* dir = std::getenv("PHYSHAND_SIM_CAPTURE");
     if (dir == nullptr || *dir == '\0') return std::nullopt;
-    CaptureSettings settings{dir, kDefaultEvery, {}};
-    if (const char* every = std::getenv("PHYSHAND_SIM_CAPTURE_EVERY")) {
-        char* end = nullptr;
-        long long n = std::strtoll(every, &end, 10);
-        if (*every != '\0' && *end == '\0' && n >= 1) {
-            settings.every = n;
-        } else {
-            std::fprintf(stderr,
-                         "physhand simulated runtime: PHYSHAND_SIM_CAPTURE_EVERY=%s is not a "
-                         "positive integer; capturing every %lld-th frame\n",
-                         every, static_cast<long long>(kDefaultEvery));
-        }
-    }
+    CaptureSettings settings{
+        dir, whole_number_env("PHYSHAND_SIM_CAPTURE_EVERY", 1).value_or(kDefaultEvery), {}};
     if (const char* sheet = std::getenv("PHYSHAND_SIM_CONTACT_SHEET"))
         settings.contact_sheet = sheet;
     std::error_code error;

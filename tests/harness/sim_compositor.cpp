@@ -297,6 +297,14 @@ Rgba8Image encode(const Canvas& canvas) {
 
 XrResult check_layers(Runtime& rt, XrSession session, const XrFrameEndInfo& info) {
     if (info.layerCount > kMaxLayerCount) return XR_ERROR_LAYER_LIMIT_EXCEEDED;
+    // A runtime refusing layers it reported room for, for the tests of what the physhand
+    // layer does when its overlay's layer is refused. Read at every frame, so that a test
+    // can lift it within a session.
+    if (const std::optional<std::int64_t> limit =
+            whole_number_env("PHYSHAND_SIM_REJECT_LAYERS_OVER", 0);
+        limit && info.layerCount > *limit) {
+        return XR_ERROR_LAYER_LIMIT_EXCEEDED;
+    }
     for (std::uint32_t i = 0; i < info.layerCount; ++i) {
         if (info.layers[i] == nullptr) return XR_ERROR_LAYER_INVALID;
         if (XrResult result = check_layer(rt, session, *info.layers[i]); XR_FAILED(result)) {

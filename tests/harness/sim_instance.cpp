@@ -4,6 +4,7 @@
 #include <openxr/openxr_reflection.h>
 
 #include <array>
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -72,6 +73,20 @@ const char* structure_type_name(XrStructureType type) {
 }
 
 #undef PHYSHAND_SIM_NAME_CASE
+
+std::optional<std::int64_t> whole_number_env(const char* name, std::int64_t min) {
+    const char* text = std::getenv(name);
+    if (text == nullptr || *text == '\0') return std::nullopt;
+    char* end = nullptr;
+    errno = 0;
+    const long long n = std::strtoll(text, &end, 10);
+    if (*end == '\0' && errno == 0 && n >= min) return n;
+    std::fprintf(stderr,
+                 "physhand simulated runtime: %s=%s is not a whole number of at least %lld; "
+                 "ignored\n",
+                 name, text, static_cast<long long>(min));
+    return std::nullopt;
+}
 
 XrResult xrEnumerateInstanceExtensionProperties(const char* layerName,
                                                 uint32_t propertyCapacityInput,

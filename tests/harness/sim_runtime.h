@@ -339,6 +339,9 @@ inline Pose from_xr(const XrPosef& p) {
 
 // sim_instance.cpp
 const char* structure_type_name(XrStructureType type);  // nullptr when unknown
+// The environment variable `name` as a whole number of at least `min`; nullopt when it is
+// unset or empty, and when it is anything else, which is reported on stderr as ignored.
+std::optional<std::int64_t> whole_number_env(const char* name, std::int64_t min);
 // sim_paths.cpp
 bool path_exists(const InstanceData& instance, XrPath path);
 // sim_session.cpp
@@ -356,7 +359,8 @@ XrResult open_vulkan_session(const InstanceData& instance,
                              const XrGraphicsBindingVulkanKHR& binding,
                              std::unique_ptr<VulkanSession>* vulkan);
 // sim_compositor.cpp
-// The checks of xrEndFrame on its layers, their spaces and their swapchains.
+// The checks of xrEndFrame on its layers, their spaces and their swapchains; with
+// PHYSHAND_SIM_REJECT_LAYERS_OVER=N, more than N layers are XR_ERROR_LAYER_LIMIT_EXCEEDED.
 XrResult check_layers(Runtime& rt, XrSession session, const XrFrameEndInfo& info);
 // The layers of a checked xrEndFrame composed in order over black, one image per view.
 std::vector<Rgba8Image> compose_layers(Runtime& rt, XrSession session, const XrFrameEndInfo& info);

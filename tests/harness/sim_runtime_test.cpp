@@ -274,8 +274,12 @@ TEST_F(SimRuntimeTest, FrameLoopAdvancesExactlyOnePeriod) {
     end_info.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
     // A headless session has no swapchain for a layer to show.
     EXPECT_EQ(xrEndFrame(running, &end_info), XR_ERROR_HANDLE_INVALID);
+    // PHYSHAND_SIM_REJECT_LAYERS_OVER lowers the limit, read at every frame.
+    setenv("PHYSHAND_SIM_REJECT_LAYERS_OVER", "0", 1);
+    EXPECT_EQ(xrEndFrame(running, &end_info), XR_ERROR_LAYER_LIMIT_EXCEEDED);
     end_info.layerCount = 0;
     EXPECT_EQ(xrEndFrame(running, &end_info), XR_SUCCESS);
+    unsetenv("PHYSHAND_SIM_REJECT_LAYERS_OVER");
 }
 
 TEST_F(SimRuntimeTest, ReferenceSpacesLocate) {

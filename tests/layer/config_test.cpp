@@ -1,11 +1,20 @@
 // The layer's config file (PHYSHAND_CONFIG): static colliders for apps that know nothing of
 // the extension, the off switch, the drive, and broken files that must not break the app.
 // Apps here do not enable the extension unless said: what they get is compared with the
-// same app run with the layer disabled (the runtime's own hands).
+// same app run with the layer disabled (the runtime's own hands). The parser itself
+// (layer/config.cpp, compiled in) is tested for what it reads and the key it blames.
+
+#include "config.h"
+
+#include <unistd.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <iterator>
 #include <limits>
+#include <ostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -13,6 +22,102 @@
 
 namespace physhand::layer_test {
 namespace {
+
+using layer::parse_config;
+
+void expect_color(const overlay::Color& actual, const overlay::Color& expected) {
+    EXPECT_EQ(actual.r, expected.r);
+    EXPECT_EQ(actual.g, expected.g);
+    EXPECT_EQ(actual.b, expected.b);
+}
+
+TEST(ConfigParse, NoDrawingKeysKeepTheOverlaysDefaults) {
+    const layer::Config config = parse_config("{}", ".");
+    const overlay::Settings defaults;
+    expect_color(config.drawing.hand_colors[0], defaults.hand_colors[0]);
+    expect_color(config.drawing.hand_colors[1], defaults.hand_colors[1]);
+    expect_color(config.drawing.contact_tint, defaults.contact_tint);
+    EXPECT_EQ(config.drawing.ghost_alpha, defaults.ghost_alpha);
+    EXPECT_TRUE(config.drawing.tint);
+    EXPECT_TRUE(config.overlay);
+}
+
+TEST(ConfigParse, ColorsGhostOpacityAndTintSetTheDrawing) {
+    const layer::Config config = parse_config(R"({"colors": {"left": [1, 0, 0.5],
+        "contact": [0, 1, 0]}, "ghost_opacity": 0.6, "tint": false})",
+                                              ".");
+    expect_color(config.drawing.hand_colors[0], {1.0f, 0.0f, 0.5f});
+    expect_color(config.drawing.hand_colors[1], overlay::Settings{}.hand_colors[1]);
+    expect_color(config.drawing.contact_tint, {0.0f, 1.0f, 0.0f});
+    EXPECT_EQ(config.drawing.ghost_alpha, 0.6f);
+    EXPECT_FALSE(config.drawing.tint);
+    const layer::Config right = parse_config(R"({"colors": {"right": [0, 0, 1]}})", ".");
+    expect_color(right.drawing.hand_colors[1], {0.0f, 0.0f, 1.0f});
+}
+
+struct BadDrawing {
+    const char* name;
+    const char* json;
+    const char* message;  // how the error begins: the key at fault
+};
+
+// Test names and failures show the case's name, not its bytes.
+void PrintTo(const BadDrawing& bad, std::ostream* out) {
+    *out << bad.name;
+}
+
+class ConfigParseRejects : public ::testing::TestWithParam<BadDrawing> {};
+
+TEST_P(ConfigParseRejects, NamingTheKey) {
+    try {
+        parse_config(GetParam().json, ".");
+        ADD_FAILURE() << "accepted";
+    } catch (const std::runtime_error& e) {
+        EXPECT_TRUE(std::string(e.what()).starts_with(GetParam().message)) << e.what();
+    }
+}
+
+constexpr BadDrawing kBadDrawings[] = {
+    {"ColorsNotAnObject", R"({"colors": [1, 0, 0]})", "colors: expected an object"},
+    {"UnknownHand", R"({"colors": {"middle": [1, 0, 0]}})", "colors.middle: unknown key"},
+    {"TwoChannels", R"({"colors": {"left": [1, 0]}})", "colors.left: expected an array of 3"},
+    {"FourChannels", R"({"colors": {"right": [1, 0, 0, 1]}})",
+     "colors.right: expected an array of 3"},
+    {"ChannelOverOne", R"({"colors": {"right": [0, 255, 0]}})",
+     "colors.right: expected an array of 3 numbers from 0 to 1"},
+    {"NegativeChannel", R"({"colors": {"contact": [0, -0.1, 0]}})",
+     "colors.contact: expected an array of 3 numbers from 0 to 1"},
+    {"ColorName", R"({"colors": {"contact": "blue"}})", "colors.contact: expected an array"},
+    {"OpacityOverOne", R"({"ghost_opacity": 1.5})", "ghost_opacity: expected a number from 0 to 1"},
+    {"NegativeOpacity", R"({"ghost_opacity": -0.1})", "ghost_opacity: expected a number"},
+    {"OpacityNotANumber", R"({"ghost_opacity": "half"})", "ghost_opacity: expected a number"},
+};
+
+INSTANTIATE_TEST_SUITE_P(Config, ConfigParseRejects, ::testing::ValuesIn(kBadDrawings),
+                         [](const ::testing::TestParamInfo<BadDrawing>& info) {
+                             return std::string(info.param.name);
+                         });
+
+// A bad value is reported on stderr with its key, and the whole config falls back to the
+// defaults, as for any other broken config.
+TEST(ConfigLoad, BadColorIsReportedAndTheDefaultsAreUsed) {
+    const std::filesystem::path path =
+        std::filesystem::temp_directory_path() /
+        ("physhand_config_bad_color_" + std::to_string(::getpid()) + ".json");
+    std::ofstream(path) << R"({"overlay": false, "colors": {"left": [1, 0, 2]}})";
+    ScopedEnv env;
+    env.set("PHYSHAND_CONFIG", path.string());
+    ::testing::internal::CaptureStderr();
+    const layer::Config config = layer::load_config();
+    const std::string log = ::testing::internal::GetCapturedStderr();
+    std::filesystem::remove(path);
+    EXPECT_NE(log.find("colors.left: expected an array of 3 numbers from 0 to 1"),
+              std::string::npos)
+        << log;
+    EXPECT_NE(log.find("using the defaults"), std::string::npos) << log;
+    EXPECT_TRUE(config.overlay);
+    expect_color(config.drawing.hand_colors[0], overlay::Settings{}.hand_colors[0]);
+}
 
 constexpr int kFrames = 180;  // the ghost palm sinks into the desk from frame 70 on
 
@@ -145,6 +250,7 @@ constexpr const char* kMalformedConfigs[] = {
     "{\"colliders\": [DESK], \"drive\": {\"name\": \"no_such_drive\"}}",
     "{\"colliders\": [DESK], \"drive\": {\"name\": \"paper\", \"substeps\": 0}}",
     "{\"colliders\": [DESK], \"enabled\": \"yes\"}",
+    "{\"colliders\": [DESK], \"colors\": {\"left\": [1, 0]}}",
     "{\"colliders\": [DESK, {\"id\": \"ball\", \"shape\": \"sphere\", \"radius\": 0.05, "
     "\"motion\": \"dynamic\", \"mass\": 1}]}",
     "{\"colliders\": [{\"id\": \"desk\", \"shape\": \"box\", \"motion\": \"static\", "
@@ -152,8 +258,8 @@ constexpr const char* kMalformedConfigs[] = {
     "MISSING",
 };
 constexpr const char* kMalformedNames[] = {
-    "Truncated",   "Empty",      "NotAnObject",     "UnknownKey", "UnknownDrive",
-    "BadSubsteps", "BadBoolean", "DynamicCollider", "ZeroSize",   "MissingFile",
+    "Truncated",  "Empty",    "NotAnObject",     "UnknownKey", "UnknownDrive", "BadSubsteps",
+    "BadBoolean", "BadColor", "DynamicCollider", "ZeroSize",   "MissingFile",
 };
 static_assert(std::size(kMalformedConfigs) == std::size(kMalformedNames));
 

@@ -106,10 +106,10 @@ class OverlayRenderTest : public ::testing::Test {
     void SetUp() override {
         std::string reason;
         vulkan_ = HeadlessVulkan::create(true, &messages_, reason);
-        if (!vulkan_) {
-            GTEST_SKIP() << "no Vulkan device can be created: " << reason;
-        }
+        ASSERT_NE(vulkan_, nullptr) << "no Vulkan device can be created: " << reason;
         if (!vulkan_->validating()) {
+            ASSERT_FALSE(PHYSHAND_VULKAN_VALIDATION_REQUIRED)
+                << "VK_LAYER_KHRONOS_validation, which the build found, is not active";
             std::cout << "note: VK_LAYER_KHRONOS_validation not installed; running without\n";
         }
         make_renderer(VK_FORMAT_R8G8B8A8_SRGB, false);
@@ -429,9 +429,19 @@ TEST_F(OverlayRenderTest, ReportsCpuAndGpuTime) {
     draw();
     EXPECT_GT(renderer_->timings().cpu_ms, 0.0);
     EXPECT_EQ(renderer_->timings().gpu_ms, -1.0) << "not asked for";
+    EXPECT_EQ(renderer_->timings().gpu_frames, 0u);
     make_renderer(VK_FORMAT_R8G8B8A8_SRGB, true);
     draw();
     EXPECT_GT(renderer_->timings().gpu_ms, 0.0);
+    EXPECT_EQ(renderer_->timings().gpu_frames, 1u);
+    // One more frame, one more time, whether read when its slot comes round or on waiting.
+    EXPECT_TRUE(renderer_->render(frame_));
+    EXPECT_TRUE(renderer_->render(frame_));
+    EXPECT_EQ(renderer_->timings().gpu_frames, 1u) << "no slot came round yet";
+    EXPECT_TRUE(renderer_->render(frame_));
+    EXPECT_EQ(renderer_->timings().gpu_frames, 2u);
+    renderer_->wait_idle();
+    EXPECT_EQ(renderer_->timings().gpu_frames, 4u);
 }
 
 TEST_F(OverlayRenderTest, RealHandsDrawBothColoursAndTheTint) {

@@ -14,6 +14,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <limits>
+#include <ostream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -80,6 +83,7 @@ class OverlayLayerTest : public ::testing::Test {
     }
 
     void TearDown() override {
+        unsetenv("PHYSHAND_SIM_REJECT_LAYERS_OVER");
         if (session_ != XR_NULL_HANDLE) xrDestroySession(session_);
         if (device_ != VK_NULL_HANDLE) {
             vkDestroyCommandPool(device_, pool_, nullptr);
@@ -286,7 +290,10 @@ class OverlayLayerTest : public ::testing::Test {
     }
 
     // One frame as an application renders it; remembers the views and the right wrist.
-    void frame() {
+    // `spoil`, when given, changes view 1 before xrEndFrame, which must answer `expected`;
+    // a frame the runtime refused is ended again unspoilt, as by an app that fixes it.
+    void frame(const std::function<void(XrCompositionLayerProjectionView&)>& spoil = {},
+               XrResult expected = XR_SUCCESS) {
         auto state = zeroed<XrFrameState>(XR_TYPE_FRAME_STATE);
         XR_OK(xrWaitFrame(session_, nullptr, &state));
         XR_OK(xrBeginFrame(session_, nullptr));
@@ -331,6 +338,13 @@ class OverlayLayerTest : public ::testing::Test {
         end.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
         end.layerCount = 1;
         end.layers = &layers;
+        if (spoil) {
+            const XrCompositionLayerProjectionView unspoilt = projection_views[1];
+            spoil(projection_views[1]);
+            ASSERT_EQ(xrEndFrame(session_, &end), expected);
+            if (XR_SUCCEEDED(expected)) return;
+            projection_views[1] = unspoilt;
+        }
         XR_OK(xrEndFrame(session_, &end));
     }
 
@@ -434,22 +448,125 @@ TEST_F(OverlayLayerTest, TintOffInTheConfigDrawsTheHandsUntinted) {
               0);
 }
 
+// Pixels that are not the app's colour.
+int count_not_clear(const PngImage& png) {
+    int count = 0;
+    for (std::uint32_t y = 0; y < png.height; ++y) {
+        for (std::uint32_t x = 0; x < png.width; ++x) {
+            const std::uint8_t* p = png.at(x, y);
+            if (p[0] != kClearSrgb || p[1] != kClearSrgb || p[2] != kClearSrgb || p[3] != 255) {
+                ++count;
+            }
+        }
+    }
+    return count;
+}
+
 TEST_F(OverlayLayerTest, OverlayOffInTheConfigLeavesTheAppsFrameAlone) {
     write_config(R"({"overlay": false})");
     ASSERT_NO_FATAL_FAILURE(start());
     for (int i = 0; i < kFrames; ++i) ASSERT_NO_FATAL_FAILURE(frame());
     const PngImage png = last_capture();
     ASSERT_GT(png.width, 0u);
-    int other = 0;
-    for (std::uint32_t y = 0; y < png.height; ++y) {
-        for (std::uint32_t x = 0; x < png.width; ++x) {
-            const std::uint8_t* p = png.at(x, y);
-            if (p[0] != kClearSrgb || p[1] != kClearSrgb || p[2] != kClearSrgb || p[3] != 255) {
-                ++other;
-            }
-        }
-    }
-    EXPECT_EQ(other, 0);
+    EXPECT_EQ(count_not_clear(png), 0);
 }
+
+// The configured drawing (no colour of it one of the defaults' red, green or light blue)
+// reaches the renderer: the right hand's physical joints, all on the box, in the contact
+// colour, yellow; its ghost below them in the hand's colour, magenta, opaque as configured
+// (at the default opacity it would be blended into the app's grey).
+TEST_F(OverlayLayerTest, ConfiguredColorsAndGhostOpacityAreDrawn) {
+    write_config(box_config(
+        R"(, "colors": {"right": [1, 0, 1], "contact": [1, 1, 0]}, "ghost_opacity": 1)"));
+    ASSERT_NO_FATAL_FAILURE(start());
+    for (int i = 0; i < kFrames; ++i) ASSERT_NO_FATAL_FAILURE(frame());
+    const PngImage png = last_capture();
+    ASSERT_GT(png.width, 0u);
+    const auto magenta = [&](int x, int y) {
+        const std::uint8_t* p = png.at(x, y);
+        return p[0] > 150 && p[2] > 150 && p[1] < 60;
+    };
+    const auto yellow = [&](int x, int y) {
+        const std::uint8_t* p = png.at(x, y);
+        return p[0] > 150 && p[1] > 150 && p[2] < 60;
+    };
+    EXPECT_GT(count_near_wrist(png, views_[0], wrist_, magenta), 0);
+    EXPECT_GT(count_near_wrist(png, views_[0], wrist_, yellow), 0);
+    EXPECT_EQ(count_near_wrist(png, views_[0], wrist_,
+                               [&](int x, int y) { return is_tint(png.at(x, y)); }),
+              0);
+}
+
+// A runtime that refuses the frame with the overlay's layer gets the app's own frame
+// instead: the app sees XR_SUCCESS and its frames composited, and the overlay stays off for
+// the session even once the runtime would take its layer again.
+TEST_F(OverlayLayerTest, RefusedOverlayLayerLeavesTheAppsFramesAndTurnsTheOverlayOff) {
+    write_config(box_config());
+    setenv("PHYSHAND_SIM_REJECT_LAYERS_OVER", "1", 1);
+    ASSERT_NO_FATAL_FAILURE(start());
+    for (int i = 0; i < kFrames / 2; ++i) ASSERT_NO_FATAL_FAILURE(frame());
+    PngImage png = last_capture();
+    ASSERT_GT(png.width, 0u);
+    EXPECT_EQ(count_not_clear(png), 0);
+    unsetenv("PHYSHAND_SIM_REJECT_LAYERS_OVER");
+    for (int i = 0; i < kFrames / 2; ++i) ASSERT_NO_FATAL_FAILURE(frame());
+    png = last_capture();
+    ASSERT_GT(png.width, 0u);
+    EXPECT_EQ(count_not_clear(png), 0);
+}
+
+struct BadView {
+    const char* name;
+    std::function<void(XrCompositionLayerProjectionView&)> spoil;
+    XrResult result;  // the runtime's answer to the app's frame
+};
+
+// Test names and failures show the case's name, not its bytes.
+void PrintTo(const BadView& bad, std::ostream* out) {
+    *out << bad.name;
+}
+
+class OverlayBadViewTest : public OverlayLayerTest,
+                           public ::testing::WithParamInterface<BadView> {};
+
+// A view the overlay cannot draw for skips the overlay for that frame only: the app's
+// frame goes through as it is (the runtime judges it), and the next frames have the hands.
+TEST_P(OverlayBadViewTest, SkipsTheOverlayForThatFrameOnly) {
+    write_config(box_config());
+    ASSERT_NO_FATAL_FAILURE(start());
+    for (int i = 0; i < kFrames / 2; ++i) ASSERT_NO_FATAL_FAILURE(frame());
+    ASSERT_NO_FATAL_FAILURE(frame(GetParam().spoil, GetParam().result));
+    if (XR_SUCCEEDED(GetParam().result)) {
+        // Only view 1 is bad, yet view 0 has no overlay either.
+        const PngImage png = last_capture();
+        ASSERT_GT(png.width, 0u);
+        EXPECT_EQ(count_not_clear(png), 0);
+    }
+    for (int i = 0; i < 2; ++i) ASSERT_NO_FATAL_FAILURE(frame());
+    const PngImage png = last_capture();
+    ASSERT_GT(png.width, 0u);
+    EXPECT_GT(count_near_wrist(png, views_[0], wrist_,
+                               [&](int x, int y) { return !is_clear(png, x, y); }),
+              0);
+}
+
+using View = XrCompositionLayerProjectionView;
+constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+const BadView kBadViews[] = {
+    {"NegativeWidth", [](View& v) { v.subImage.imageRect.extent.width = -kSize; },
+     XR_ERROR_SWAPCHAIN_RECT_INVALID},
+    {"ZeroHeight", [](View& v) { v.subImage.imageRect.extent.height = 0; },
+     XR_ERROR_SWAPCHAIN_RECT_INVALID},
+    {"NanFov", [](View& v) { v.fov.angleLeft = kNan; }, XR_SUCCESS},
+    {"InfiniteFov", [](View& v) { v.fov.angleDown = -kInf; }, XR_SUCCESS},
+    {"InfinitePosition", [](View& v) { v.pose.position.x = kInf; }, XR_ERROR_POSE_INVALID},
+};
+
+INSTANTIATE_TEST_SUITE_P(OverlayLayerTest, OverlayBadViewTest, ::testing::ValuesIn(kBadViews),
+                         [](const ::testing::TestParamInfo<BadView>& info) {
+                             return std::string(info.param.name);
+                         });
 
 }  // namespace
