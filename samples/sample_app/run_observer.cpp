@@ -4,7 +4,7 @@
 #include <cmath>
 #include <optional>
 
-#include "drive.h"
+#include "scene_colliders.h"
 #include "xr_convert.h"
 
 namespace physhand::sample {
@@ -25,8 +25,7 @@ BodyState body_state(const XrPhysicalColliderLocationPHYSHAND& location) {
     body.pose = to_pose(location.pose);
     body.linear_velocity = to_vec3(location.linearVelocity);
     body.angular_velocity = to_vec3(location.angularVelocity);
-    body.touched_by = {(location.flags & XR_PHYSICAL_COLLIDER_TOUCHED_BY_LEFT_BIT_PHYSHAND) != 0,
-                       (location.flags & XR_PHYSICAL_COLLIDER_TOUCHED_BY_RIGHT_BIT_PHYSHAND) != 0};
+    body.touched_by = touched_by(location);
     body.asleep = (location.flags & XR_PHYSICAL_COLLIDER_ASLEEP_BIT_PHYSHAND) != 0;
     return body;
 }

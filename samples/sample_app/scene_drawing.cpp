@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "hand_skeleton.h"
+#include "scene_colliders.h"
 #include "touch_feedback.h"
 #include "xr_convert.h"
 
@@ -78,9 +79,6 @@ std::vector<Draw> SceneDrawing::draws(
         const XrPhysicalColliderLocationPHYSHAND& location = colliders[i];
         float alpha = 1.0f;
         if (feedback.enabled && c.motion == Motion::Dynamic) {
-            const bool touched =
-                (location.flags & (XR_PHYSICAL_COLLIDER_TOUCHED_BY_LEFT_BIT_PHYSHAND |
-                                   XR_PHYSICAL_COLLIDER_TOUCHED_BY_RIGHT_BIT_PHYSHAND)) != 0;
             double gap = std::numeric_limits<double>::infinity();
             const Pose pose = to_pose(location.pose);
             for (const LocatedHand& hand : hands) {
@@ -92,7 +90,7 @@ std::vector<Draw> SceneDrawing::draws(
                                        joint.radius);
                 }
             }
-            alpha = object_alpha(touched, gap, feedback.hover_m);
+            alpha = object_alpha(touched(location), gap, feedback.hover_m);
         }
         const Rgb& rgb = collider_colors_[i];
         out.push_back(

@@ -1,17 +1,9 @@
 #include "touch_log.h"
 
+#include "scene_colliders.h"
 #include "xr_convert.h"
 
 namespace physhand::sample {
-
-namespace {
-
-bool touched(const XrPhysicalColliderLocationPHYSHAND& location) {
-    return (location.flags & (XR_PHYSICAL_COLLIDER_TOUCHED_BY_LEFT_BIT_PHYSHAND |
-                              XR_PHYSICAL_COLLIDER_TOUCHED_BY_RIGHT_BIT_PHYSHAND)) != 0;
-}
-
-}  // namespace
 
 TouchLog::TouchLog(const Scene& scene) : scene_(scene), tracks_(scene.colliders.size()) {}
 

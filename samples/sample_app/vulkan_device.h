@@ -26,7 +26,6 @@ class VulkanDevice {
     // What xrCreateSession chains to bind the session to this device.
     XrGraphicsBindingVulkan2KHR binding() const;
 
-    VkPhysicalDevice physical_device() const { return physical_device_; }
     VkDevice device() const { return device_; }
     VkQueue queue() const { return queue_; }
     std::uint32_t queue_family() const { return queue_family_; }

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
@@ -14,6 +13,7 @@
 #include <vector>
 
 #include "frame_clock.h"
+#include "run_metrics.h"
 #include "touch_log.h"
 #include "xr_check.h"
 
@@ -55,13 +55,6 @@ void check_extensions(const std::vector<const char*>& wanted) {
         }
         throw std::runtime_error(std::string("the runtime lacks ") + name);
     }
-}
-
-double median(std::vector<double> values) {
-    if (values.empty()) return 0.0;
-    const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-    std::nth_element(values.begin(), middle, values.end());
-    return *middle;
 }
 
 }  // namespace
@@ -163,8 +156,8 @@ void XrApp::play_frame(const Scene& scene, int frame, XrTime time, RunObserver& 
 ScenePlayed XrApp::play(const Scene& scene) {
     const XrInstance instance = instance_.get();
     const XrSession session = session_.get();
-    // As many frames as the physics-only runner plays (physics/scene_run.cpp).
-    const int frames = static_cast<int>(std::ceil(scene.duration_s * kFrameRateHz - 1e-9));
+    // As many frames as the physics-only runner plays.
+    const int frames = scene_frame_count(scene.duration_s);
     RunObserver observer(scene);
     TouchLog touches(scene);
     // The previous scene's colliders go; this one's are declared at its first frame.
@@ -232,7 +225,7 @@ ScenePlayed XrApp::play(const Scene& scene) {
     }
     played.result = observer.result();
     if (graphics_) {
-        played.rendering = {{"frame_ms_median", median(graphics_->frame_ms())},
+        played.rendering = {{"frame_ms_median", quantile(graphics_->frame_ms(), 0.5)},
                             {"touches", touches.to_json()}};
     }
     return played;
