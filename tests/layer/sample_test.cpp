@@ -1,5 +1,5 @@
 // The sample app, headless, through loader -> layer -> simulated runtime, against the
-// physics-only runner on the same scene: the same outcome and the same final bodies.
+// physics-only runner on the same scene: the same outcome and the very same final bodies.
 
 #include <cstdio>
 #include <memory>
@@ -69,11 +69,15 @@ TEST_F(SampleApp, HeadlessPlayerMatchesThePhysicsRunner) {
     for (const auto& [id, body] : bodies.items()) {
         SCOPED_TRACE(id);
         ASSERT_TRUE(got.at("bodies").contains(id));
-        const auto& a = got.at("bodies").at(id).at("position");
-        const auto& b = body.at("position");
-        const XrVector3f pa = {a[0].get<float>(), a[1].get<float>(), a[2].get<float>()};
-        const XrVector3f pb = {b[0].get<float>(), b[1].get<float>(), b[2].get<float>()};
-        EXPECT_LT(distance(pa, pb), 0.001);
+        // The very same bodies, as the 32-bit floats the layer hands over.
+        const nlohmann::json& pose = got.at("bodies").at(id);
+        for (const char* part : {"position", "orientation"}) {
+            ASSERT_EQ(pose.at(part).size(), body.at(part).size()) << part;
+            for (std::size_t i = 0; i < body.at(part).size(); ++i) {
+                EXPECT_EQ(pose.at(part)[i].get<float>(), body.at(part)[i].get<float>())
+                    << part << "[" << i << "]";
+            }
+        }
     }
 }
 
