@@ -32,7 +32,8 @@ BodyState body_state(const XrPhysicalColliderLocationPHYSHAND& location) {
 
 }  // namespace
 
-RunObserver::RunObserver(const Scene& scene) : scene_(scene), predicates_(scene) {
+RunObserver::RunObserver(const Scene& scene, const DriveSettings& drive)
+    : scene_(scene), drive_(drive), predicates_(scene) {
     for (std::size_t i = 0; i < scene.colliders.size(); ++i) index_[scene.colliders[i].id] = i;
 }
 
@@ -81,9 +82,8 @@ RunResult RunObserver::result() const {
     RunResult result;
     result.scene = scene_.name;
     result.path = "layer";
-    // The layer's drive unless its config file says otherwise; the API cannot read it back.
-    result.drive = default_drive().name;
-    result.substeps = default_drive().substeps;
+    result.drive = drive_.name;
+    result.substeps = drive_.substeps;
     result.predicates = predicates_.finish();
     result.success = std::all_of(result.predicates.begin(), result.predicates.end(),
                                  [](const PredicateResult& p) { return p.passed; });

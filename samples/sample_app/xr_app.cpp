@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "frame_clock.h"
+#include "hand_drive.h"
 #include "run_metrics.h"
 #include "touch_log.h"
 #include "xr_check.h"
@@ -93,6 +94,7 @@ XrApp::XrApp(const AppOptions& options) : options_(options) {
     XrSession session = XR_NULL_HANDLE;
     xr_check(instance, xrCreateSession(instance, &session_info, &session), "xrCreateSession");
     session_ = XrHandle<XrSession>(session, xrDestroySession);
+    set_hand_drive(instance, session, options.drive);
 
     XrReferenceSpaceCreateInfo space_info{};
     space_info.type = XR_TYPE_REFERENCE_SPACE_CREATE_INFO;
@@ -158,7 +160,7 @@ ScenePlayed XrApp::play(const Scene& scene) {
     const XrSession session = session_.get();
     // As many frames as the physics-only runner plays.
     const int frames = scene_frame_count(scene.duration_s);
-    RunObserver observer(scene);
+    RunObserver observer(scene, options_.drive);
     TouchLog touches(scene);
     // The previous scene's colliders go; this one's are declared at its first frame.
     colliders_.reset();
