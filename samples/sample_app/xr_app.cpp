@@ -23,7 +23,8 @@ namespace physhand::sample {
 namespace {
 
 // How long the app waits, at the start and at the end, for the runtime to move the session
-// on before it gives up (not in live mode, where a person puts the headset on).
+// on before it gives up (in live mode only once it asked to exit: a person puts the headset
+// on when they like).
 constexpr std::chrono::seconds kStateChangeTimeout{10};
 
 // What the app enables; the layer's extension first, as the likeliest to be missing.
@@ -171,18 +172,23 @@ ScenePlayed XrApp::play(const Scene& scene) {
     // Since when no scene frame was played: before the session runs, and after the last.
     auto idle_since = std::chrono::steady_clock::now();
     while (poll_events()) {
-        if (options_.live) {
+        if (options_.live && !exit_requested_) {
             const UserCommand command = poll_user_command();
-            if (command != UserCommand::None) {
+            if (command == UserCommand::Quit && running_) {
+                // Ended as the runtime expects: the loop runs on until it stops the session.
+                xr_check(instance, xrRequestExitSession(session), "xrRequestExitSession");
+                exit_requested_ = true;
+            } else if (command != UserCommand::None) {
                 played.next = command;
                 break;
             }
         }
-        const bool playing = running_ && (options_.live || frame < frames);
-        if (!playing && !options_.live &&
+        const bool playing = running_ && !exit_requested_ && (options_.live || frame < frames);
+        if (!playing && (!options_.live || exit_requested_) &&
             std::chrono::steady_clock::now() - idle_since > kStateChangeTimeout) {
-            throw std::runtime_error(frame == 0 ? "the runtime never started the session"
-                                                : "the runtime never ended the session");
+            throw std::runtime_error(frame == 0 && !exit_requested_
+                                         ? "the runtime never started the session"
+                                         : "the runtime never ended the session");
         }
         if (!running_) {
             std::this_thread::sleep_for(std::chrono::milliseconds(1));
