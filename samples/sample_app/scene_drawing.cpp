@@ -58,13 +58,22 @@ bool position_valid(const XrHandJointLocationEXT& joint) {
 
 SceneDrawing::SceneDrawing(const Scene& scene) : scene_(scene) {
     std::size_t dynamic = 0;
+    bool has_plane = false;
     for (const Collider& c : scene.colliders) {
         collider_meshes_.push_back(meshes_.add_shape(c.shape));
         Rgb color = kStatic;
-        if (c.shape.kind == ShapeKind::Plane) color = kFloor;
+        if (c.shape.kind == ShapeKind::Plane) {
+            color = kFloor;
+            has_plane = true;
+        }
         if (c.motion == Motion::Kinematic) color = kKinematic;
         if (c.motion == Motion::Dynamic) color = kDynamic[dynamic++ % kDynamic.size()];
         collider_colors_.push_back(linear(color));
+    }
+    if (!has_plane) {
+        Shape floor;  // y = 0, facing up
+        floor.kind = ShapeKind::Plane;
+        visual_floor_ = meshes_.add_shape(floor);
     }
     sphere_ = meshes_.add_unit_sphere();
     cylinder_ = meshes_.add_unit_cylinder();
@@ -95,6 +104,11 @@ std::vector<Draw> SceneDrawing::draws(
         const Rgb& rgb = collider_colors_[i];
         out.push_back(
             {collider_meshes_[i], pose_matrix(location.pose), {rgb[0], rgb[1], rgb[2], alpha}});
+    }
+    if (visual_floor_) {
+        const Rgb floor = linear(kFloor);
+        out.push_back(
+            {*visual_floor_, Eigen::Matrix4f::Identity(), {floor[0], floor[1], floor[2], 1.0f}});
     }
     for (const LocatedHand& hand : hands) {
         if (hand.active) add_hand(hand, out);
