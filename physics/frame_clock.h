@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 namespace physhand {
@@ -18,6 +19,13 @@ inline double clock_seconds(std::int64_t ns) {
 
 inline double frame_time_s(std::int64_t frame) {
     return clock_seconds(frame * kFramePeriodNs);
+}
+
+// The frames a scene of `duration_s` plays, 1..N: enough 90 Hz frames to cover it. The
+// tolerance keeps a duration of a whole number of frames (1.1 s: 99) from gaining one
+// through rounding.
+inline int scene_frame_count(double duration_s) {
+    return static_cast<int>(std::ceil(duration_s * kFrameRateHz - 1e-9));
 }
 
 }  // namespace physhand

@@ -53,7 +53,7 @@ RunResult run_scene(const Scene& input, const SimulationSettings& settings,
     const TrackedHands tracked(scene);
     PredicateEvaluator predicates(scene);
     RunMetrics metrics;
-    const int frames = static_cast<int>(std::ceil(scene.duration_s * kFrameRateHz - 1e-9));
+    const int frames = scene_frame_count(scene.duration_s);
     for (int f = 1; f <= frames; ++f) {
         const double t = frame_time_s(f);
         for (std::size_t i = 0; i < scene.colliders.size(); ++i) {

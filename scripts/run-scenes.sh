@@ -5,7 +5,10 @@
 # are rendered (Vulkan; lavapipe when no other device is set) with capture: their frames go
 # to out/SCENE/ and one contact sheet each to out/SCENE_contact_sheet.png. The others play
 # headless. PHYSICS_ONLY=1 runs physhand-scene instead; VIEW_SIZE sets the rendered views'
-# width in pixels (default 320).
+# width in pixels (default 320). The simulated head sits at the table, close enough for 4 cm
+# cubes to read on the contact sheets (for sphere: above the table's far end, to see into the
+# basket on the floor beyond it); PHYSHAND_SIM_HEAD_POSITION and PHYSHAND_SIM_HEAD_PITCH_DEG
+# put it elsewhere.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/install-deps.sh"
@@ -22,8 +25,11 @@ for scene in "$root"/samples/scenes/*.json; do
     elif [[ " throw sphere displacement stack " == *" $name "* ]]; then
         rm -rf "${out:?}/$name"
         mkdir -p "$out/$name"
+        if [ "$name" = sphere ]; then head=(0.1,1.45,-0.45 -64); else head=(0.15,1.1,0.05 -40); fi
         PHYSHAND_SIM_SCENE="$scene" PHYSHAND_SIM_CAPTURE="$out/$name" \
             PHYSHAND_SIM_CONTACT_SHEET="$out/${name}_contact_sheet.png" \
+            PHYSHAND_SIM_HEAD_POSITION="${PHYSHAND_SIM_HEAD_POSITION:-${head[0]}}" \
+            PHYSHAND_SIM_HEAD_PITCH_DEG="${PHYSHAND_SIM_HEAD_PITCH_DEG:-${head[1]}}" \
             "$build/samples/physhand-sample" --view-size "${VIEW_SIZE:-320}" "$scene" "$@"
     else
         PHYSHAND_SIM_SCENE="$scene" "$build/samples/physhand-sample" --headless "$scene" "$@"

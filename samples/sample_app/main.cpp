@@ -2,6 +2,7 @@
 // layer and the runtime (the simulated one plays the scene's hands; a headset, the user's),
 // draws them with Vulkan unless headless, and prints the same result as physhand-scene, with
 // "path": "layer".
+#include <cmath>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
@@ -11,8 +12,10 @@
 #include <string_view>
 #include <vector>
 
+#include "hand_drive.h"
 #include "run_report.h"
 #include "scene.h"
+#include "scene_run.h"
 #include "xr_app.h"
 
 namespace {
@@ -23,7 +26,11 @@ constexpr const char* kUsage =
     "                  (XR_KHR_vulkan_enable2), drawing colliders and hands\n"
     "  --live          for a headset: scenes never end on their own; type a line on stdin:\n"
     "                  r (reset the scene), n (next scene file), q (quit)\n"
-    "  --hover-cm X    objects start to turn translucent within X cm of a hand (default 3)\n"
+    "  --drive NAME    the hand drive the sample sets (bones, implicit, paper; default: the\n"
+    "                  default drive, whatever the layer's config says)\n"
+    "  --substeps N    physics substeps per frame, 1 to 64 (default: the drive's own)\n"
+    "  --hover-cm X    objects start to turn translucent within X cm of a hand (default 3;\n"
+    "                  0: only while touched)\n"
     "  --no-feedback   touched objects stay opaque\n"
     "  --view-size N   each view N pixels wide (default: the runtime's recommendation)\n"
     "  --json          print each result as one JSON object (default: one summary line)\n";
@@ -33,13 +40,18 @@ int usage_error(const std::string& message) {
     return 2;
 }
 
-// The number after an option, or nullopt when there is none or it is out of [low, high].
-std::optional<double> number_argument(int& i, int argc, char** argv, double low, double high) {
-    if (i + 1 >= argc) return std::nullopt;
-    const std::string text = argv[++i];
+// The text after option argv[i] (i moves on to it), or "" when there is none.
+std::string option_value(int& i, int argc, char** argv) {
+    return i + 1 < argc ? argv[++i] : "";
+}
+
+// `text` as a number in [low, high] (whole when `whole`), or nullopt; nan and inf are in no
+// range.
+std::optional<double> number_in(const std::string& text, double low, double high, bool whole) {
     char* end = nullptr;
     const double value = std::strtod(text.c_str(), &end);
     if (text.empty() || *end != '\0' || !(value >= low && value <= high)) return std::nullopt;
+    if (whole && value != std::floor(value)) return std::nullopt;
     return value;
 }
 
@@ -64,6 +76,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> scene_paths;
     physhand::sample::AppOptions options;
     bool json = false;
+    physhand::RunOptions drive_options;
     for (int i = 1; i < argc; ++i) {
         const std::string_view arg = argv[i];
         if (arg == "--headless") {
@@ -73,12 +86,30 @@ int main(int argc, char** argv) {
         } else if (arg == "--no-feedback") {
             options.feedback.enabled = false;
         } else if (arg == "--hover-cm") {
-            const auto cm = number_argument(i, argc, argv, 0.0, 100.0);
-            if (!cm) return usage_error("--hover-cm wants a distance in cm from 0 to 100");
+            const std::string text = option_value(i, argc, argv);
+            const auto cm = number_in(text, 0.0, 100.0, false);
+            if (!cm) {
+                return usage_error("--hover-cm: \"" + text +
+                                   "\" is not a distance in cm from 0 (no hover) to 100");
+            }
             options.feedback.hover_m = *cm / 100.0;
+        } else if (arg == "--drive") {
+            drive_options.drive = option_value(i, argc, argv);
+        } else if (arg == "--substeps") {
+            const std::string text = option_value(i, argc, argv);
+            const auto n = number_in(text, 1, physhand::sample::kMaxDriveSubsteps, true);
+            if (!n) {
+                return usage_error("--substeps: \"" + text + "\" is not a whole number from 1 to " +
+                                   std::to_string(physhand::sample::kMaxDriveSubsteps));
+            }
+            drive_options.substeps = static_cast<int>(*n);
         } else if (arg == "--view-size") {
-            const auto size = number_argument(i, argc, argv, 16, 8192);
-            if (!size) return usage_error("--view-size wants a width in pixels from 16 to 8192");
+            const std::string text = option_value(i, argc, argv);
+            const auto size = number_in(text, 16, 8192, true);
+            if (!size) {
+                return usage_error("--view-size: \"" + text +
+                                   "\" is not a width in pixels from 16 to 8192");
+            }
             options.view_width = static_cast<std::uint32_t>(*size);
         } else if (arg == "--json") {
             json = true;
@@ -90,6 +121,11 @@ int main(int argc, char** argv) {
         } else {
             scene_paths.emplace_back(arg);
         }
+    }
+    try {
+        options.drive = physhand::settings_for(drive_options).drive;
+    } catch (const std::invalid_argument& e) {
+        return usage_error(std::string("--drive: ") + e.what());
     }
     if (scene_paths.empty()) return usage_error("no scene file");
     if (options.live && !options.rendered) return usage_error("--live needs the rendered mode");

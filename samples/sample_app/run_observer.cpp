@@ -4,7 +4,7 @@
 #include <cmath>
 #include <optional>
 
-#include "drive.h"
+#include "scene_colliders.h"
 #include "xr_convert.h"
 
 namespace physhand::sample {
@@ -25,15 +25,15 @@ BodyState body_state(const XrPhysicalColliderLocationPHYSHAND& location) {
     body.pose = to_pose(location.pose);
     body.linear_velocity = to_vec3(location.linearVelocity);
     body.angular_velocity = to_vec3(location.angularVelocity);
-    body.touched_by = {(location.flags & XR_PHYSICAL_COLLIDER_TOUCHED_BY_LEFT_BIT_PHYSHAND) != 0,
-                       (location.flags & XR_PHYSICAL_COLLIDER_TOUCHED_BY_RIGHT_BIT_PHYSHAND) != 0};
+    body.touched_by = touched_by(location);
     body.asleep = (location.flags & XR_PHYSICAL_COLLIDER_ASLEEP_BIT_PHYSHAND) != 0;
     return body;
 }
 
 }  // namespace
 
-RunObserver::RunObserver(const Scene& scene) : scene_(scene), predicates_(scene) {
+RunObserver::RunObserver(const Scene& scene, const DriveSettings& drive)
+    : scene_(scene), drive_(drive), predicates_(scene) {
     for (std::size_t i = 0; i < scene.colliders.size(); ++i) index_[scene.colliders[i].id] = i;
 }
 
@@ -86,9 +86,8 @@ RunResult RunObserver::result() const {
     RunResult result;
     result.scene = scene_.name;
     result.path = "layer";
-    // The layer's drive unless its config file says otherwise; the API cannot read it back.
-    result.drive = default_drive().name;
-    result.substeps = default_drive().substeps;
+    result.drive = drive_.name;
+    result.substeps = drive_.substeps;
     result.predicates = predicates_.finish();
     result.success = std::all_of(result.predicates.begin(), result.predicates.end(),
                                  [](const PredicateResult& p) { return p.passed; });

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "drive.h"
 #include "hand_trackers.h"
 #include "predicates.h"
 #include "run_metrics.h"
@@ -20,7 +21,8 @@ namespace physhand::sample {
 // same predicates), from what the API returns each frame.
 class RunObserver {
   public:
-    explicit RunObserver(const Scene& scene);
+    // `drive`: the hand drive the app set for the run, reported with the result.
+    RunObserver(const Scene& scene, const DriveSettings& drive);
 
     // One displayed frame at scene time `t`: both hands, the time it took to locate them,
     // and every collider in scene order.
@@ -30,6 +32,7 @@ class RunObserver {
 
   private:
     const Scene& scene_;
+    DriveSettings drive_;
     std::map<std::string, std::size_t> index_;  // collider id -> scene order
     RunMetrics metrics_;
     PredicateEvaluator predicates_;

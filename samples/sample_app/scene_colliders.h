@@ -3,6 +3,7 @@
 #include <openxr/openxr.h>
 #include <openxr/physhand_physical_hands.h>
 
+#include <array>
 #include <vector>
 
 #include "scene.h"
@@ -19,6 +20,18 @@ struct ColliderFunctions {
 
     static ColliderFunctions load(XrInstance instance);
 };
+
+// Whether each hand (left, right, as physhand::HandSide) touched the collider in the last
+// step, from the extension's flags.
+inline std::array<bool, 2> touched_by(const XrPhysicalColliderLocationPHYSHAND& location) {
+    return {(location.flags & XR_PHYSICAL_COLLIDER_TOUCHED_BY_LEFT_BIT_PHYSHAND) != 0,
+            (location.flags & XR_PHYSICAL_COLLIDER_TOUCHED_BY_RIGHT_BIT_PHYSHAND) != 0};
+}
+// Whether either hand did.
+inline bool touched(const XrPhysicalColliderLocationPHYSHAND& location) {
+    const std::array<bool, 2> by = touched_by(location);
+    return by[0] || by[1];
+}
 
 // A scene's colliders declared to the layer, in scene order, in the STAGE space.
 class SceneColliders {

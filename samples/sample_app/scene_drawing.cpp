@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "hand_skeleton.h"
+#include "scene_colliders.h"
 #include "touch_feedback.h"
 #include "xr_convert.h"
 
@@ -57,13 +58,22 @@ bool position_valid(const XrHandJointLocationEXT& joint) {
 
 SceneDrawing::SceneDrawing(const Scene& scene) : scene_(scene) {
     std::size_t dynamic = 0;
+    bool has_plane = false;
     for (const Collider& c : scene.colliders) {
         collider_meshes_.push_back(meshes_.add_shape(c.shape));
         Rgb color = kStatic;
-        if (c.shape.kind == ShapeKind::Plane) color = kFloor;
+        if (c.shape.kind == ShapeKind::Plane) {
+            color = kFloor;
+            has_plane = true;
+        }
         if (c.motion == Motion::Kinematic) color = kKinematic;
         if (c.motion == Motion::Dynamic) color = kDynamic[dynamic++ % kDynamic.size()];
         collider_colors_.push_back(linear(color));
+    }
+    if (!has_plane) {
+        Shape floor;  // y = 0, facing up
+        floor.kind = ShapeKind::Plane;
+        visual_floor_ = meshes_.add_shape(floor);
     }
     sphere_ = meshes_.add_unit_sphere();
     cylinder_ = meshes_.add_unit_cylinder();
@@ -78,9 +88,6 @@ std::vector<Draw> SceneDrawing::draws(
         const XrPhysicalColliderLocationPHYSHAND& location = colliders[i];
         float alpha = 1.0f;
         if (feedback.enabled && c.motion == Motion::Dynamic) {
-            const bool touched =
-                (location.flags & (XR_PHYSICAL_COLLIDER_TOUCHED_BY_LEFT_BIT_PHYSHAND |
-                                   XR_PHYSICAL_COLLIDER_TOUCHED_BY_RIGHT_BIT_PHYSHAND)) != 0;
             double gap = std::numeric_limits<double>::infinity();
             const Pose pose = to_pose(location.pose);
             for (const LocatedHand& hand : hands) {
@@ -92,11 +99,16 @@ std::vector<Draw> SceneDrawing::draws(
                                        joint.radius);
                 }
             }
-            alpha = object_alpha(touched, gap, feedback.hover_m);
+            alpha = object_alpha(touched(location), gap, feedback.hover_m);
         }
         const Rgb& rgb = collider_colors_[i];
         out.push_back(
             {collider_meshes_[i], pose_matrix(location.pose), {rgb[0], rgb[1], rgb[2], alpha}});
+    }
+    if (visual_floor_) {
+        const Rgb floor = linear(kFloor);
+        out.push_back(
+            {*visual_floor_, Eigen::Matrix4f::Identity(), {floor[0], floor[1], floor[2], 1.0f}});
     }
     for (const LocatedHand& hand : hands) {
         if (hand.active) add_hand(hand, out);

@@ -4,6 +4,7 @@
 #include <openxr/physhand_physical_hands.h>
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "hand_trackers.h"
@@ -22,7 +23,8 @@ struct FeedbackSettings {
 // What the sample draws of a scene: its colliders where the layer says they are, in
 // colours by kind (floor, static, kinematic, one hue per dynamic collider), and the
 // physical hands' joints and bones. The scene format has no colours, so these are the
-// sample's own.
+// sample's own. A scene without a plane collider gets a floor at y = 0 to stand on, drawn
+// only: nothing collides with it.
 class SceneDrawing {
   public:
     explicit SceneDrawing(const Scene& scene);
@@ -43,6 +45,7 @@ class SceneDrawing {
     MeshSet meshes_;
     std::vector<MeshRange> collider_meshes_;             // scene order
     std::vector<std::array<float, 3>> collider_colors_;  // linear rgb
+    std::optional<MeshRange> visual_floor_;              // when the scene has no plane
     MeshRange sphere_;
     MeshRange cylinder_;
 };

@@ -10,7 +10,6 @@ namespace physhand::sample {
 
 namespace {
 
-constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 // Linear sky; the floor and the shapes stand out against it.
 constexpr VkClearColorValue kBackground = {{0.42f, 0.55f, 0.72f, 1.0f}};
 
@@ -22,7 +21,16 @@ struct PushConstants {
 };
 static_assert(sizeof(PushConstants) == 128, "the least push-constant room Vulkan guarantees");
 
-VkRenderPass create_render_pass(VkDevice device, VkFormat color_format) {
+// The aspects of a depth image view of `format`: a combined format's attachment is viewed
+// whole.
+VkImageAspectFlags depth_aspects(VkFormat format) {
+    const bool stencil = format == VK_FORMAT_D32_SFLOAT_S8_UINT ||
+                         format == VK_FORMAT_D24_UNORM_S8_UINT ||
+                         format == VK_FORMAT_D16_UNORM_S8_UINT;
+    return VK_IMAGE_ASPECT_DEPTH_BIT | (stencil ? VK_IMAGE_ASPECT_STENCIL_BIT : 0);
+}
+
+VkRenderPass create_render_pass(VkDevice device, VkFormat color_format, VkFormat depth_format) {
     std::array<VkAttachmentDescription, 2> attachments{};
     attachments[0].format = color_format;
     attachments[0].samples = VK_SAMPLE_COUNT_1_BIT;
@@ -33,7 +41,7 @@ VkRenderPass create_render_pass(VkDevice device, VkFormat color_format) {
     attachments[0].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;  // cleared whole
     attachments[0].finalLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     attachments[1] = attachments[0];
-    attachments[1].format = kDepthFormat;
+    attachments[1].format = depth_format;
     attachments[1].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
     attachments[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
     const VkAttachmentReference color{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
@@ -43,8 +51,10 @@ VkRenderPass create_render_pass(VkDevice device, VkFormat color_format) {
     subpass.colorAttachmentCount = 1;
     subpass.pColorAttachments = &color;
     subpass.pDepthStencilAttachment = &depth;
-    // The previous frame's use of the same images (and the runtime's reads of the colour,
-    // which it orders on the same queue) must finish before they are cleared again.
+    // Orders this pass's clears after earlier attachment writes on this queue. The runtime's
+    // reads of a colour image are ordered by the swapchain protocol instead: render() waits
+    // for its fence before the image is released, and xrWaitSwapchainImage hands an image
+    // back only once the runtime is done with it.
     VkSubpassDependency dependency{};
     dependency.srcSubpass = VK_SUBPASS_EXTERNAL;
     dependency.dstSubpass = 0;
@@ -189,7 +199,7 @@ ShapeRenderer::ShapeRenderer(const VulkanDevice& device, VkFormat color_format,
                              const MeshSet& meshes)
     : device_(device), color_format_(color_format) {
     const VkDevice vk = device.device();
-    render_pass_ = create_render_pass(vk, color_format);
+    render_pass_ = create_render_pass(vk, color_format, device.depth_format());
     VkPushConstantRange range{};
     range.stageFlags = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     range.size = sizeof(PushConstants);
@@ -295,7 +305,7 @@ const ShapeRenderer::Target& ShapeRenderer::target(const ViewTarget& view) {
     VkImageCreateInfo depth{};
     depth.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
     depth.imageType = VK_IMAGE_TYPE_2D;
-    depth.format = kDepthFormat;
+    depth.format = device_.depth_format();
     depth.extent = {view.extent.width, view.extent.height, 1};
     depth.mipLevels = 1;
     depth.arrayLayers = 1;
@@ -308,7 +318,8 @@ const ShapeRenderer::Target& ShapeRenderer::target(const ViewTarget& view) {
     vkGetImageMemoryRequirements(vk, t.depth, &requirements);
     t.depth_memory = device_.allocate(requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     vk_check(vkBindImageMemory(vk, t.depth, t.depth_memory, 0), "vkBindImageMemory");
-    t.depth_view = image_view(t.depth, kDepthFormat, VK_IMAGE_ASPECT_DEPTH_BIT);
+    t.depth_view =
+        image_view(t.depth, device_.depth_format(), depth_aspects(device_.depth_format()));
     const std::array<VkImageView, 2> attachments = {t.color_view, t.depth_view};
     VkFramebufferCreateInfo framebuffer{};
     framebuffer.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;

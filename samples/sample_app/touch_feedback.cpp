@@ -37,7 +37,8 @@ double surface_distance(const Shape& shape, const Pose& pose, const Vec3& point)
 
 float object_alpha(bool touched, double gap_m, double hover_m) {
     if (touched) return kTouchedAlpha;
-    if (!(gap_m < hover_m)) return 1.0f;
+    // No hover distance: nothing fades before a touch (and 0/0 below is never reached).
+    if (!(hover_m > 0.0) || !(gap_m < hover_m)) return 1.0f;
     const auto closeness = static_cast<float>(1.0 - std::max(gap_m, 0.0) / hover_m);
     return 1.0f - (1.0f - kTouchedAlpha) * closeness;
 }

@@ -1,17 +1,9 @@
 #include "touch_log.h"
 
+#include "scene_colliders.h"
 #include "xr_convert.h"
 
 namespace physhand::sample {
-
-namespace {
-
-bool touched(const XrPhysicalColliderLocationPHYSHAND& location) {
-    return (location.flags & (XR_PHYSICAL_COLLIDER_TOUCHED_BY_LEFT_BIT_PHYSHAND |
-                              XR_PHYSICAL_COLLIDER_TOUCHED_BY_RIGHT_BIT_PHYSHAND)) != 0;
-}
-
-}  // namespace
 
 TouchLog::TouchLog(const Scene& scene) : scene_(scene), tracks_(scene.colliders.size()) {}
 
@@ -21,13 +13,16 @@ void TouchLog::add_frame(int frame,
     for (std::size_t i = 0; i < colliders.size(); ++i) {
         if (scene_.colliders[i].motion != Motion::Dynamic) continue;
         Track& track = tracks_[i];
+        const Vec3 centre = to_vec3(colliders[i].pose.position);
         if (!touched(colliders[i])) {
             track.current = {};
+            if (!track.touched) track.approach = Sighting{frame, view0_position(centre)};
             continue;
         }
+        track.touched = true;
         if (track.current.positions.empty()) track.current.first = frame;
         track.current.last = frame;
-        track.current.positions.push_back(view0_position(to_vec3(colliders[i].pose.position)));
+        track.current.positions.push_back(view0_position(centre));
         if (track.current.positions.size() > track.longest.positions.size()) {
             track.longest = track.current;
         }
@@ -40,13 +35,19 @@ nlohmann::json TouchLog::to_json() const {
         const Run& run = tracks_[i].longest;
         if (run.positions.empty()) continue;
         const std::size_t middle = run.positions.size() / 2;
-        const auto& position = run.positions[middle];
+        const auto position = [](const std::optional<std::array<double, 2>>& p) {
+            return p ? nlohmann::json(*p) : nlohmann::json();
+        };
+        const std::optional<Sighting>& approach = tracks_[i].approach;
         out.push_back(
             {{"collider", scene_.colliders[i].id},
              {"first_frame", run.first},
              {"last_frame", run.last},
              {"frame", run.first + static_cast<int>(middle)},
-             {"view0_position", position ? nlohmann::json(*position) : nlohmann::json()}});
+             {"view0_position", position(run.positions[middle])},
+             {"approach_frame", approach ? nlohmann::json(approach->frame) : nlohmann::json()},
+             {"approach_view0_position",
+              approach ? position(approach->position) : nlohmann::json()}});
     }
     return out;
 }

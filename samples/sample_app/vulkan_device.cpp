@@ -8,6 +8,27 @@
 
 namespace physhand::sample {
 
+namespace {
+
+// D32_SFLOAT first, for depth precision with the near plane at 2 cm, but it is optional;
+// Vulkan guarantees only D16_UNORM.
+VkFormat pick_depth_format(VkPhysicalDevice device) {
+    for (const VkFormat format : {VK_FORMAT_D32_SFLOAT, VK_FORMAT_D32_SFLOAT_S8_UINT,
+                                  VK_FORMAT_X8_D24_UNORM_PACK32, VK_FORMAT_D16_UNORM}) {
+        VkFormatProperties properties{};
+        vkGetPhysicalDeviceFormatProperties(device, format, &properties);
+        if ((properties.optimalTilingFeatures & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT) !=
+            0) {
+            return format;
+        }
+    }
+    throw std::runtime_error(
+        "the Vulkan device renders to none of the depth formats D32_SFLOAT, "
+        "D32_SFLOAT_S8_UINT, X8_D24_UNORM_PACK32, D16_UNORM");
+}
+
+}  // namespace
+
 void vk_check(VkResult result, const char* call) {
     if (result != VK_SUCCESS) {
         throw std::runtime_error(std::string(call) + " failed with VkResult " +
@@ -58,6 +79,7 @@ VulkanDevice::VulkanDevice(XrInstance instance, XrSystemId system) {
                                                                 &physical_device_),
                  "xrGetVulkanGraphicsDevice2KHR");
         vkGetPhysicalDeviceMemoryProperties(physical_device_, &memory_);
+        depth_format_ = pick_depth_format(physical_device_);
 
         std::uint32_t count = 0;
         vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &count, nullptr);

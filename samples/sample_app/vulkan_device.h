@@ -26,10 +26,11 @@ class VulkanDevice {
     // What xrCreateSession chains to bind the session to this device.
     XrGraphicsBindingVulkan2KHR binding() const;
 
-    VkPhysicalDevice physical_device() const { return physical_device_; }
     VkDevice device() const { return device_; }
     VkQueue queue() const { return queue_; }
     std::uint32_t queue_family() const { return queue_family_; }
+    // The depth format the device renders to, the most precise of those tried.
+    VkFormat depth_format() const { return depth_format_; }
     // Memory for `requirements` of a type with `flags`; throws when there is none.
     VkDeviceMemory allocate(const VkMemoryRequirements& requirements,
                             VkMemoryPropertyFlags flags) const;
@@ -41,6 +42,7 @@ class VulkanDevice {
     VkQueue queue_ = VK_NULL_HANDLE;
     std::uint32_t queue_family_ = 0;
     VkPhysicalDeviceMemoryProperties memory_{};
+    VkFormat depth_format_ = VK_FORMAT_UNDEFINED;
 };
 
 }  // namespace physhand::sample

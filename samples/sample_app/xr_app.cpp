@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
@@ -14,6 +13,8 @@
 #include <vector>
 
 #include "frame_clock.h"
+#include "hand_drive.h"
+#include "run_metrics.h"
 #include "touch_log.h"
 #include "xr_check.h"
 
@@ -22,7 +23,8 @@ namespace physhand::sample {
 namespace {
 
 // How long the app waits, at the start and at the end, for the runtime to move the session
-// on before it gives up (not in live mode, where a person puts the headset on).
+// on before it gives up (in live mode only once it asked to exit: a person puts the headset
+// on when they like).
 constexpr std::chrono::seconds kStateChangeTimeout{10};
 
 // What the app enables; the layer's extension first, as the likeliest to be missing.
@@ -55,13 +57,6 @@ void check_extensions(const std::vector<const char*>& wanted) {
         }
         throw std::runtime_error(std::string("the runtime lacks ") + name);
     }
-}
-
-double median(std::vector<double> values) {
-    if (values.empty()) return 0.0;
-    const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-    std::nth_element(values.begin(), middle, values.end());
-    return *middle;
 }
 
 }  // namespace
@@ -100,6 +95,7 @@ XrApp::XrApp(const AppOptions& options) : options_(options) {
     XrSession session = XR_NULL_HANDLE;
     xr_check(instance, xrCreateSession(instance, &session_info, &session), "xrCreateSession");
     session_ = XrHandle<XrSession>(session, xrDestroySession);
+    set_hand_drive(instance, session, options.drive);
 
     XrReferenceSpaceCreateInfo space_info{};
     space_info.type = XR_TYPE_REFERENCE_SPACE_CREATE_INFO;
@@ -163,9 +159,9 @@ void XrApp::play_frame(const Scene& scene, int frame, XrTime time, RunObserver& 
 ScenePlayed XrApp::play(const Scene& scene) {
     const XrInstance instance = instance_.get();
     const XrSession session = session_.get();
-    // As many frames as the physics-only runner plays (physics/scene_run.cpp).
-    const int frames = static_cast<int>(std::ceil(scene.duration_s * kFrameRateHz - 1e-9));
-    RunObserver observer(scene);
+    // As many frames as the physics-only runner plays.
+    const int frames = scene_frame_count(scene.duration_s);
+    RunObserver observer(scene, options_.drive);
     TouchLog touches(scene);
     // The previous scene's colliders go; this one's are declared at its first frame.
     colliders_.reset();
@@ -176,18 +172,23 @@ ScenePlayed XrApp::play(const Scene& scene) {
     // Since when no scene frame was played: before the session runs, and after the last.
     auto idle_since = std::chrono::steady_clock::now();
     while (poll_events()) {
-        if (options_.live) {
+        if (options_.live && !exit_requested_) {
             const UserCommand command = poll_user_command();
-            if (command != UserCommand::None) {
+            if (command == UserCommand::Quit && running_) {
+                // Ended as the runtime expects: the loop runs on until it stops the session.
+                xr_check(instance, xrRequestExitSession(session), "xrRequestExitSession");
+                exit_requested_ = true;
+            } else if (command != UserCommand::None) {
                 played.next = command;
                 break;
             }
         }
-        const bool playing = running_ && (options_.live || frame < frames);
-        if (!playing && !options_.live &&
+        const bool playing = running_ && !exit_requested_ && (options_.live || frame < frames);
+        if (!playing && (!options_.live || exit_requested_) &&
             std::chrono::steady_clock::now() - idle_since > kStateChangeTimeout) {
-            throw std::runtime_error(frame == 0 ? "the runtime never started the session"
-                                                : "the runtime never ended the session");
+            throw std::runtime_error(frame == 0 && !exit_requested_
+                                         ? "the runtime never started the session"
+                                         : "the runtime never ended the session");
         }
         if (!running_) {
             std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -232,7 +233,7 @@ ScenePlayed XrApp::play(const Scene& scene) {
     }
     played.result = observer.result();
     if (graphics_) {
-        played.rendering = {{"frame_ms_median", median(graphics_->frame_ms())},
+        played.rendering = {{"frame_ms_median", quantile(graphics_->frame_ms(), 0.5)},
                             {"touches", touches.to_json()}};
     }
     return played;

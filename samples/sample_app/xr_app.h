@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "drive.h"
 #include "hand_trackers.h"
 #include "run_observer.h"
 #include "scene.h"
@@ -24,6 +25,8 @@ struct AppOptions {
     // for a headset. Otherwise each scene plays for its duration and the app asks to exit.
     bool live = false;
     FeedbackSettings feedback;
+    // Set through the extension for the whole session, and reported with each result.
+    DriveSettings drive = default_drive();
     std::optional<std::uint32_t> view_width;  // pixels; the runtime's recommendation if unset
 };
 
@@ -42,8 +45,8 @@ class XrApp {
   public:
     // Creates the instance (XR_EXT_hand_tracking, XR_PHYSHAND_physical_hands, and
     // XR_KHR_vulkan_enable2 or XR_MND_headless), the Vulkan device when rendered, the
-    // session, a STAGE space and both hand trackers. Throws XrCallError for a failed call,
-    // std::runtime_error when an extension is missing.
+    // session with the options' hand drive, a STAGE space and both hand trackers. Throws
+    // XrCallError for a failed call, std::runtime_error when an extension is missing.
     explicit XrApp(const AppOptions& options);
 
     // Runs the frame loop until the scene has played, the runtime ends the session, or (live)

@@ -1,5 +1,6 @@
 // Contact sheets: a session's story in one image, for a person to look at, so tiles are
-// small and picked evenly over the captured frames.
+// smaller than the views, yet large enough for a few centimetres at a table to read, and
+// picked evenly over the captured frames.
 
 #include <algorithm>
 #include <cstdint>
@@ -9,7 +10,7 @@
 namespace physhand::sim {
 namespace {
 
-constexpr std::uint32_t kShrink = 4;  // a tile is a quarter of a view's width and height
+constexpr std::uint32_t kShrink = 2;  // a tile is half a view's width and height
 constexpr std::size_t kTiles = 6;     // at most, in rows of kColumns
 constexpr std::uint32_t kColumns = 3;
 constexpr std::uint32_t kGap = 4;  // black pixels between tiles

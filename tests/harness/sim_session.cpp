@@ -96,7 +96,15 @@ XrResult xrCreateSession(XrInstance instance, const XrSessionCreateInfo* createI
 
 XrResult xrDestroySession(XrSession session) {
     return guarded([&](Runtime& rt) {
-        if (rt.sessions.find(session) == nullptr) return XR_ERROR_HANDLE_INVALID;
+        const SessionData* data = rt.sessions.find(session);
+        if (data == nullptr) return XR_ERROR_HANDLE_INVALID;
+        // Allowed, but an app that quits this way never let the runtime end the session:
+        // said, so that a test of an app's shutdown can see it.
+        if (data->running) {
+            std::fprintf(stderr,
+                         "physhand simulated runtime: a running session was destroyed (no "
+                         "xrRequestExitSession and xrEndSession before)\n");
+        }
         destroy_session(rt, session);
         return XR_SUCCESS;
     });

@@ -1,14 +1,16 @@
 // Reference spaces and views. STAGE is the scene frame; the head never moves: it stands
 // at eye height above the STAGE origin looking down -Z, and LOCAL starts there too.
-// PHYSHAND_SIM_HEAD_PITCH_DEG (read once) tilts the head, VIEW and the eyes (not LOCAL,
-// which stays level) that many degrees up, or down when negative, so a scene on a table can
-// be watched.
+// PHYSHAND_SIM_HEAD_POSITION=X,Y,Z (metres in STAGE, read once) puts it elsewhere, a seated
+// viewer close to a table, say; PHYSHAND_SIM_HEAD_PITCH_DEG (read once) tilts the head, VIEW
+// and the eyes (not LOCAL, which stays level) that many degrees up, or down when negative, so
+// a scene on a table can be watched.
 
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <numbers>
+#include <optional>
 
 #include "sim_runtime.h"
 
@@ -26,8 +28,38 @@ bool is_supported_reference_space(XrReferenceSpaceType type) {
            kReferenceSpaces.end();
 }
 
+constexpr double kMaxHeadOffset = 100.0;  // metres from the STAGE origin, along each axis
+
+// `text` as X,Y,Z, each a number within kMaxHeadOffset; nullopt for anything else.
+std::optional<Vec3> parse_position(const char* text) {
+    Vec3 position;
+    const char* at = text;
+    for (int i = 0; i < 3; ++i) {
+        char* end = nullptr;
+        position[i] = std::strtod(at, &end);
+        if (end == at || !(std::abs(position[i]) <= kMaxHeadOffset)) return std::nullopt;
+        if (*end != (i < 2 ? ',' : '\0')) return std::nullopt;
+        at = end + 1;
+    }
+    return position;
+}
+
 Pose head_in_stage() {
-    return {Vec3(0, kEyeHeight, 0), Quat::Identity()};
+    static const Vec3 position = [] {
+        const Vec3 standing(0, kEyeHeight, 0);
+        const char* text = std::getenv("PHYSHAND_SIM_HEAD_POSITION");
+        if (text == nullptr) return standing;
+        const std::optional<Vec3> parsed = parse_position(text);
+        if (!parsed) {
+            std::fprintf(stderr,
+                         "physhand simulated runtime: PHYSHAND_SIM_HEAD_POSITION=%s is not X,Y,Z "
+                         "(three numbers, metres from -%g to %g); the head stands at 0,%g,0\n",
+                         text, kMaxHeadOffset, kMaxHeadOffset, kEyeHeight);
+            return standing;
+        }
+        return *parsed;
+    }();
+    return {position, Quat::Identity()};
 }
 
 Pose view_in_stage() {

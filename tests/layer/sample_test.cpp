@@ -1,10 +1,11 @@
 // The sample app, headless, through loader -> layer -> simulated runtime, against the
-// physics-only runner on the same scene: the same outcome and the same final bodies.
+// physics-only runner on the same scene: the same outcome and the very same final bodies.
 
 #include <cstdio>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "layer_fixture.h"
 
@@ -41,25 +42,33 @@ std::string quoted(const std::string& text) {
     return "'" + text + "'";
 }
 
-using SampleApp = LayerTest;
-
-TEST_F(SampleApp, HeadlessPlayerMatchesThePhysicsRunner) {
-    const std::string scene = std::string(PHYSHAND_SCENES_DIR) + "/lift_hold.json";
+// Runs both tools on `scene` (the sample headless) with the same `options`; expects both to
+// succeed and returns their results, physics first.
+std::pair<nlohmann::json, nlohmann::json> run_both(const std::string& scene,
+                                                   const std::string& options) {
     const Output physics =
-        run_command(quoted(PHYSHAND_SCENE_EXE) + " " + quoted(scene) + " --json");
-    ASSERT_EQ(physics.status, 0) << physics.text;
+        run_command(quoted(PHYSHAND_SCENE_EXE) + " " + quoted(scene) + " " + options + " --json");
+    EXPECT_EQ(physics.status, 0) << physics.text;
     // The sample plays the scene it is given: no PHYSHAND_SIM_SCENE of ours.
-    const Output layer =
-        run_command(quoted(PHYSHAND_SAMPLE_EXE) + " --headless " + quoted(scene) + " --json");
-    ASSERT_EQ(layer.status, 0) << layer.text;
-
+    const Output layer = run_command(quoted(PHYSHAND_SAMPLE_EXE) + " --headless " + quoted(scene) +
+                                     " " + options + " --json");
+    EXPECT_EQ(layer.status, 0) << layer.text;
     const nlohmann::json expected = result_of(physics);
     const nlohmann::json got = result_of(layer);
-    ASSERT_TRUE(expected.is_object()) << physics.text;
-    ASSERT_TRUE(got.is_object()) << layer.text;
+    EXPECT_TRUE(expected.is_object()) << physics.text;
+    EXPECT_TRUE(got.is_object()) << layer.text;
+    return {expected, got};
+}
+
+// The same outcome and the very same final bodies: both paths simulate bit-identical
+// worlds, and the layer hands poses over as the 32-bit floats of OpenXR.
+void expect_same_run(const nlohmann::json& expected, const nlohmann::json& got) {
+    ASSERT_TRUE(expected.is_object() && got.is_object());
     EXPECT_EQ(expected.value("path", ""), "physics");
     EXPECT_EQ(got.value("path", ""), "layer");
     EXPECT_EQ(got.at("scene"), expected.at("scene"));
+    EXPECT_EQ(got.at("drive"), expected.at("drive"));
+    EXPECT_EQ(got.at("substeps"), expected.at("substeps"));
     EXPECT_EQ(got.at("success"), expected.at("success"));
     EXPECT_EQ(got.value("nonfinite_count", -1), 0);
 
@@ -69,12 +78,41 @@ TEST_F(SampleApp, HeadlessPlayerMatchesThePhysicsRunner) {
     for (const auto& [id, body] : bodies.items()) {
         SCOPED_TRACE(id);
         ASSERT_TRUE(got.at("bodies").contains(id));
-        const auto& a = got.at("bodies").at(id).at("position");
-        const auto& b = body.at("position");
-        const XrVector3f pa = {a[0].get<float>(), a[1].get<float>(), a[2].get<float>()};
-        const XrVector3f pb = {b[0].get<float>(), b[1].get<float>(), b[2].get<float>()};
-        EXPECT_LT(distance(pa, pb), 0.001);
+        const nlohmann::json& pose = got.at("bodies").at(id);
+        for (const char* part : {"position", "orientation"}) {
+            ASSERT_EQ(pose.at(part).size(), body.at(part).size()) << part;
+            for (std::size_t i = 0; i < body.at(part).size(); ++i) {
+                EXPECT_EQ(pose.at(part)[i].get<float>(), body.at(part)[i].get<float>())
+                    << part << "[" << i << "]";
+            }
+        }
     }
+}
+
+const std::string kLiftHold = std::string(PHYSHAND_SCENES_DIR) + "/lift_hold.json";
+
+using SampleApp = LayerTest;
+
+TEST_F(SampleApp, HeadlessPlayerMatchesThePhysicsRunner) {
+    const auto [expected, got] = run_both(kLiftHold, "");
+    expect_same_run(expected, got);
+    EXPECT_EQ(got.at("drive"), "bones");
+}
+
+// The sample sets its drive through the extension, so the drive it reports is the one that
+// ran, whatever the layer's config picks.
+TEST_F(SampleApp, RunsTheDriveItReportsWhateverTheConfigSays) {
+    env_.set("PHYSHAND_CONFIG",
+             write_file("config.json", R"({"drive": {"name": "paper", "substeps": 8}})").string());
+    const auto [expected, got] = run_both(kLiftHold, "");
+    expect_same_run(expected, got);
+}
+
+TEST_F(SampleApp, DriveAndSubstepsOptionsMatchThePhysicsRunner) {
+    const auto [expected, got] = run_both(kLiftHold, "--drive implicit --substeps 3");
+    expect_same_run(expected, got);
+    EXPECT_EQ(got.at("drive"), "implicit");
+    EXPECT_EQ(got.at("substeps"), 3);
 }
 
 }  // namespace

@@ -1,19 +1,25 @@
-// The rendered sample app on the simulated runtime, through the loader and the layer, for
-// each paper scene: the scene succeeds, and at a moment of contact the touched object is
-// translucent. The app is run three times with identical physics: once to learn when the
-// object is touched and where view 0 shows it, then capturing that frame with and without
-// the touch feedback; where the object is, the two frames must differ (the background shows
-// through), and far from it they must not.
+// The rendered sample app on the simulated runtime, through the loader and the layer. For
+// each paper scene: the scene succeeds, at a moment of contact the touched object is
+// translucent, and just before the first contact the object a hand approaches has begun to
+// fade. Each app run has identical physics: a first one learns when objects are touched and
+// where view 0 shows them, then the frame of a moment is captured with and without the
+// feedback; where the object is, the two frames must differ (the background shows through),
+// and far from it they must not. Also: a floor under scenes without one, the head position
+// setting of the simulated runtime, and quitting a live session.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
 #include <string>
 
+#include "command_output.h"
 #include "png_file.h"
 
 namespace {
@@ -23,54 +29,109 @@ using physhand::test::read_png;
 using physhand::test::Rgba;
 
 constexpr int kViewSize = 320;  // swapchain pixels: small, lavapipe draws on the CPU
+// Enough to learn where view 0 shows an object (as a fraction of the view, whatever its size).
+constexpr int kLearnViewSize = 32;
 // Around the object's centre, in swapchain pixels: well inside a 4 cm cube a metre away.
 constexpr int kWindow = 2;
 constexpr int kChanged = 12;  // of 255, in some channel: a visible change
+// How far from an object's centre its image may reach, as a fraction of the image's width:
+// a 5 cm ball 40 cm from the eye.
+constexpr double kHoverReach = 0.06;
 
 std::filesystem::path scene_file(const std::string& name) {
     return std::filesystem::path(PHYSHAND_SCENES_DIR) / (name + ".json");
 }
 
-// Runs the sample on one scene; returns its stdout, or fails.
-std::string run_sample(const std::string& scene, const std::string& options,
-                       const std::filesystem::path& capture, int capture_every) {
-    std::string command;
-    if (!capture.empty()) {
-        command = "PHYSHAND_SIM_CAPTURE='" + capture.string() +
-                  "' PHYSHAND_SIM_CAPTURE_EVERY=" + std::to_string(capture_every) + " ";
-    }
-    command += std::string("'") + PHYSHAND_SAMPLE + "' --json --view-size " +
-               std::to_string(kViewSize) + " " + options + " '" + scene_file(scene).string() +
-               "' </dev/null";
-    FILE* pipe = popen(command.c_str(), "r");
-    if (pipe == nullptr) {
-        ADD_FAILURE() << "cannot run " << command;
-        return {};
-    }
-    std::string out;
-    char buffer[4096];
-    while (std::fgets(buffer, sizeof(buffer), pipe) != nullptr) out += buffer;
-    EXPECT_EQ(pclose(pipe), 0) << command;
-    return out;
+using physhand::test::CommandOutput;
+
+// Runs `command` in the shell, `environment` (NAME='value' ...) before it.
+CommandOutput run_shell(const std::string& environment, const std::string& command) {
+    return physhand::test::run_command(environment + " " + command);
+}
+
+std::string sample_command(const std::string& scene, const std::string& options, int view_size) {
+    return std::string("'") + PHYSHAND_SAMPLE + "' --json --view-size " +
+           std::to_string(view_size) + " " + options + " '" + scene_file(scene).string() + "'";
+}
+
+std::string capture_environment(const std::filesystem::path& capture, int capture_every) {
+    return "PHYSHAND_SIM_CAPTURE='" + capture.string() +
+           "' PHYSHAND_SIM_CAPTURE_EVERY=" + std::to_string(capture_every);
+}
+
+// Runs the sample on one scene, capturing every `capture_every`-th frame into `capture`.
+void run_sample(const std::string& scene, const std::string& options,
+                const std::filesystem::path& capture, int capture_every,
+                int view_size = kViewSize) {
+    const CommandOutput run = run_shell(capture_environment(capture, capture_every),
+                                        sample_command(scene, options, view_size) + " </dev/null");
+    EXPECT_EQ(run.status, 0) << run.out;
+}
+
+// The scene played with the default feedback and no capture: its result, checked.
+nlohmann::json learn(const std::string& scene) {
+    const CommandOutput run =
+        run_shell("", sample_command(scene, "", kLearnViewSize) + " </dev/null");
+    EXPECT_EQ(run.status, 0) << run.out;
+    const nlohmann::json result = nlohmann::json::parse(run.out);
+    EXPECT_EQ(result.at("path"), "layer");
+    EXPECT_TRUE(result.at("success").get<bool>()) << result.dump(1);
+    EXPECT_GT(result.at("frame_ms_median").get<double>(), 0.0);
+    return result;
+}
+
+Png view0(const std::filesystem::path& dir, int frame) {
+    char name[64];
+    std::snprintf(name, sizeof(name), "frame_%05d_view0.png", frame);
+    return read_png(dir / name);
 }
 
 int difference(const Rgba& a, const Rgba& b) {
     return std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
 }
 
-class SampleRenderTest : public testing::TestWithParam<std::string> {
+// Captured pixels per drawn one.
+int scale_of(const Png& captured) {
+    return static_cast<int>(captured.width) / kViewSize;
+}
+
+// Of the pixels within `reach` captured pixels of (u, v) (fractions of the image), how many
+// differ visibly between `a` and `b`, and how many there are.
+std::pair<int, int> changed_around(const Png& a, const Png& b, double u, double v, int reach) {
+    const int width = static_cast<int>(a.width), height = static_cast<int>(a.height);
+    const int cx = static_cast<int>(u * width), cy = static_cast<int>(v * height);
+    int changed = 0, total = 0;
+    for (int y = std::max(cy - reach, 0); y <= std::min(cy + reach, height - 1); ++y) {
+        for (int x = std::max(cx - reach, 0); x <= std::min(cx + reach, width - 1); ++x) {
+            ++total;
+            if (difference(a.rgba(x, y), b.rgba(x, y)) > kChanged) ++changed;
+        }
+    }
+    return {changed, total};
+}
+
+bool in_view(double u, double v) {
+    return u > 0.05 && u < 0.95 && v > 0.05 && v < 0.95;
+}
+
+class SampleRender : public testing::Test {
   protected:
     void SetUp() override {
-        dir_ = std::filesystem::temp_directory_path() / ("physhand_sample_render_" + GetParam());
+        // CTest runs each test in a process of its own.
+        dir_ = std::filesystem::temp_directory_path() /
+               ("physhand_sample_render_" + std::to_string(getpid()));
         std::filesystem::remove_all(dir_);
         // The build tree's runtime and layer, on lavapipe where it is installed, with the
         // layer's defaults whatever the user's config; the app names each scene.
         setenv("XR_RUNTIME_JSON", PHYSHAND_SIM_RUNTIME_JSON, 1);
         setenv("XDG_DATA_HOME", PHYSHAND_BUILD_SHARE, 1);
         setenv("XDG_CONFIG_HOME", PHYSHAND_EMPTY_CONFIG_HOME, 1);
-        unsetenv("PHYSHAND_CONFIG");
-        unsetenv("PHYSHAND_SIM_SCENE");
-        unsetenv("DISABLE_XR_APILAYER_PHYSHAND_physical_hands");
+        for (const char* name :
+             {"PHYSHAND_CONFIG", "PHYSHAND_SIM_SCENE", "PHYSHAND_SIM_CAPTURE",
+              "PHYSHAND_SIM_CONTACT_SHEET", "PHYSHAND_SIM_HEAD_POSITION",
+              "PHYSHAND_SIM_HEAD_PITCH_DEG", "DISABLE_XR_APILAYER_PHYSHAND_physical_hands"}) {
+            unsetenv(name);
+        }
         if (*PHYSHAND_LAVAPIPE != '\0') {
             setenv("VK_DRIVER_FILES", PHYSHAND_LAVAPIPE, 1);
             setenv("VK_ICD_FILENAMES", PHYSHAND_LAVAPIPE, 1);
@@ -81,11 +142,27 @@ class SampleRenderTest : public testing::TestWithParam<std::string> {
     std::filesystem::path dir_;
 };
 
-TEST_P(SampleRenderTest, SucceedsAndTheTouchedObjectIsTranslucent) {
-    const nlohmann::json result = nlohmann::json::parse(run_sample(GetParam(), "", {}, 0));
-    EXPECT_EQ(result["path"], "layer");
-    EXPECT_TRUE(result["success"].get<bool>()) << result.dump(1);
-    EXPECT_GT(result["frame_ms_median"].get<double>(), 0.0);
+class PaperScene : public SampleRender, public testing::WithParamInterface<std::string> {
+  protected:
+    // View 0 of scene frame `frame` played with `options`, and with --no-feedback instead;
+    // nullopt, with a failure, unless both were captured alike. They show the same world, so
+    // the sky is the same.
+    std::optional<std::pair<Png, Png>> with_and_without_feedback(const std::string& options,
+                                                                 int frame) {
+        run_sample(GetParam(), options, dir_ / "shown", frame);
+        run_sample(GetParam(), "--no-feedback", dir_ / "opaque", frame);
+        Png shown = view0(dir_ / "shown", frame), opaque = view0(dir_ / "opaque", frame);
+        if (shown.width == 0 || shown.width != opaque.width || shown.height != opaque.height) {
+            ADD_FAILURE() << "frame " << frame << " not captured alike";
+            return std::nullopt;
+        }
+        EXPECT_LE(difference(shown.rgba(2, 2), opaque.rgba(2, 2)), 1);
+        return std::make_pair(std::move(shown), std::move(opaque));
+    }
+};
+
+TEST_P(PaperScene, SucceedsAndTheTouchedObjectIsTranslucent) {
+    const nlohmann::json result = learn(GetParam());
     ASSERT_FALSE(result["touches"].empty()) << "no object was touched";
 
     // The object touched longest, at the middle of its touch.
@@ -99,35 +176,106 @@ TEST_P(SampleRenderTest, SucceedsAndTheTouchedObjectIsTranslucent) {
     ASSERT_FALSE(touch["view0_position"].is_null()) << touch.dump();
     const int frame = touch["frame"];
     const double u = touch["view0_position"][0], v = touch["view0_position"][1];
-    ASSERT_TRUE(u > 0.05 && u < 0.95 && v > 0.05 && v < 0.95) << "out of view: " << touch.dump();
+    ASSERT_TRUE(in_view(u, v)) << "out of view: " << touch.dump();
 
-    run_sample(GetParam(), "", dir_ / "feedback", frame);
-    run_sample(GetParam(), "--no-feedback", dir_ / "opaque", frame);
-    char name[64];
-    std::snprintf(name, sizeof(name), "frame_%05d_view0.png", frame);
-    const Png shown = read_png(dir_ / "feedback" / name);
-    const Png opaque = read_png(dir_ / "opaque" / name);
-    ASSERT_EQ(shown.width, opaque.width);
-    ASSERT_GT(shown.width, 0u);
-
-    const int scale = static_cast<int>(shown.width) / kViewSize;  // captured pixels per drawn
-    const int cx = static_cast<int>(u * shown.width), cy = static_cast<int>(v * shown.height);
-    int changed = 0, total = 0;
-    for (int y = cy - kWindow * scale; y <= cy + kWindow * scale; ++y) {
-        for (int x = cx - kWindow * scale; x <= cx + kWindow * scale; ++x) {
-            ++total;
-            if (difference(shown.rgba(x, y), opaque.rgba(x, y)) > kChanged) ++changed;
-        }
-    }
+    // No hover: a hand at the object is within any hover distance, so only the touched
+    // flags can make it translucent here.
+    const auto frames = with_and_without_feedback("--hover-cm 0", frame);
+    ASSERT_TRUE(frames);
+    const auto& [shown, opaque] = *frames;
+    const auto [changed, total] = changed_around(shown, opaque, u, v, kWindow * scale_of(shown));
     // A good part of it: fingers may lie in front of the rest (a flick touches the ball with
     // the back of the hand between it and the eye), the same in both frames.
-    EXPECT_GT(changed, total / 4) << touch["collider"] << " at frame " << frame << " (" << cx
-                                  << ", " << cy << ") is not translucent";
-    // The sky is untouched: the two runs show the same world.
-    EXPECT_LE(difference(shown.rgba(2, 2), opaque.rgba(2, 2)), 1);
+    EXPECT_GT(changed, total / 4) << touch["collider"] << " at frame " << frame << " (" << u << ", "
+                                  << v << ") is not translucent";
 }
 
-INSTANTIATE_TEST_SUITE_P(PaperScenes, SampleRenderTest,
+TEST_P(PaperScene, AnObjectAboutToBeTouchedStartsToFade) {
+    const nlohmann::json result = learn(GetParam());
+    // The object touched first, at the frame before.
+    nlohmann::json touch;
+    for (const auto& t : result["touches"]) {
+        if (!t["approach_frame"].is_null() &&
+            (touch.is_null() || t["approach_frame"] < touch["approach_frame"])) {
+            touch = t;
+        }
+    }
+    ASSERT_FALSE(touch.is_null()) << "no object was approached: " << result.dump(1);
+    ASSERT_FALSE(touch["approach_view0_position"].is_null()) << touch.dump();
+    const int frame = touch["approach_frame"];
+    const double u = touch["approach_view0_position"][0], v = touch["approach_view0_position"][1];
+    ASSERT_TRUE(in_view(u, v)) << "out of view: " << touch.dump();
+
+    // Nothing is touched yet: only hovering can fade anything.
+    const auto frames = with_and_without_feedback("", frame);
+    ASSERT_TRUE(frames);
+    const auto& [shown, opaque] = *frames;
+    // The hand about to touch the object may hide most of it (the overlay's hand is drawn
+    // over the app's layer), so what counts is that the frames differ around it, by a few
+    // drawn pixels at least. Other objects near the hand may fade too.
+    const int changed =
+        changed_around(shown, opaque, u, v, static_cast<int>(kHoverReach * shown.width)).first;
+    EXPECT_GE(changed, 2 * scale_of(shown) * scale_of(shown))
+        << touch["collider"] << " at frame " << frame << " (" << u << ", " << v
+        << ") has not begun to fade";
+}
+
+INSTANTIATE_TEST_SUITE_P(Sample, PaperScene,
                          testing::Values("throw", "sphere", "displacement", "stack"));
+
+// lift_hold has a table and no floor collider: the sample draws one, so the view straight
+// down (the bottom of the image, with the head pitched down) shows a grey floor, not sky.
+TEST_F(SampleRender, DrawsAFloorWhereTheSceneHasNone) {
+    // Drawn small: the floor is all that is looked at.
+    constexpr int kFrame = 90;
+    run_sample("lift_hold", "", dir_, kFrame, 64);
+    const Png frame = view0(dir_, kFrame);
+    ASSERT_GT(frame.width, 0u);
+    const Rgba sky = frame.rgba(frame.width / 2, 2);  // 5 degrees below the horizon, 18 m away
+    const Rgba below = frame.rgba(frame.width / 2, frame.height - 3);
+    EXPECT_GT(difference(below, sky), 30) << "sky below the viewer";
+    // The floor's grey, whatever its shading.
+    EXPECT_LT(std::max({below.r, below.g, below.b}) - std::min({below.r, below.g, below.b}), 20);
+}
+
+// A moved head sees the scene elsewhere in view 0; a malformed position is named and the
+// default used.
+TEST_F(SampleRender, HeadPositionMovesTheViews) {
+    const auto seen = [](const std::string& environment) {
+        const CommandOutput run =
+            run_shell(environment, sample_command("sphere", "", 32) + " </dev/null 2>&1");
+        EXPECT_EQ(run.status, 0) << run.out;
+        nlohmann::json position;
+        std::istringstream lines(run.out);
+        for (std::string line; std::getline(lines, line);) {
+            if (line.starts_with("{")) {
+                position = nlohmann::json::parse(line)["touches"][0]["view0_position"];
+            }
+        }
+        EXPECT_FALSE(position.is_null()) << run.out;
+        return std::make_pair(position, run.out);
+    };
+    const auto [standing, standing_out] = seen("");
+    const auto [seated, seated_out] = seen("PHYSHAND_SIM_HEAD_POSITION=0.1,1.15,0");
+    const auto [fallback, fallback_out] = seen("PHYSHAND_SIM_HEAD_POSITION=0.1,,1");
+    EXPECT_NE(seated, standing);
+    // Lower and closer, the eye sees the ball higher in the image.
+    EXPECT_LT(seated[1].get<double>(), standing[1].get<double>());
+    EXPECT_EQ(fallback, standing);
+    EXPECT_NE(fallback_out.find("PHYSHAND_SIM_HEAD_POSITION=0.1,,1 is not X,Y,Z"),
+              std::string::npos)
+        << fallback_out;
+    EXPECT_EQ(seated_out.find("PHYSHAND_SIM_HEAD_POSITION"), std::string::npos) << seated_out;
+}
+
+// `q` in live mode asks the runtime to end the session and lets it, instead of destroying
+// a running one (the simulated runtime says so when that happens).
+TEST_F(SampleRender, LiveQuitEndsTheSession) {
+    const CommandOutput run =
+        run_shell("", "printf 'q\\n' | " + sample_command("sphere", "--live", 32) + " 2>&1");
+    EXPECT_EQ(run.status, 0) << run.out;
+    EXPECT_NE(run.out.find("\"scene\""), std::string::npos) << run.out;
+    EXPECT_EQ(run.out.find("running session was destroyed"), std::string::npos) << run.out;
+}
 
 }  // namespace
