@@ -31,10 +31,10 @@ Vec3 implicit_velocity(const Vec3& error, const Vec3& velocity, const Vec3& targ
 const std::vector<DriveSettings>& builtin_drives() {
     // Gains and smoothing of the implicit drives come from the sweep in BENCHMARKS.md. The
     // stiff drives would pass tracking noise on whole, so they follow a smoothed ghost: 1 Hz
-    // when still, the cutoff rising 3 kHz per m/s (measured: jitter 4.8 -> 2.0 mm under 2 mm
-    // of noise, for 0.04-0.07 mm more tracking error in the moving scenes). `paper` follows
-    // the ghost as it comes, as Algorithm 1 does.
-    constexpr GhostSmoothing kSmoothing{1.0, 3000.0};
+    // when still, the cutoff rising 3.5 kHz per m/s (measured: jitter 4.8 -> 2.1 mm under
+    // 2 mm of noise, for 0.03-0.06 mm more tracking error in the moving scenes). `paper`
+    // follows the ghost as it comes, as Algorithm 1 does.
+    constexpr GhostSmoothing kSmoothing{1.0, 3500.0};
     static const std::vector<DriveSettings> drives = {
         {"bones", BodyModel::BoneCapsules, DriveLaw::Implicit, 20000.0, 90.0, true, 20.0, 1,
          kSmoothing},

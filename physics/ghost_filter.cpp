@@ -21,6 +21,13 @@ void GhostFilter::reset(const HandPose& ghost) {
     velocity_.fill(Vec3::Zero());
 }
 
+void GhostFilter::restart(const HandPose& ghost, const HandPose& previous, double dt) {
+    reset(ghost);
+    if (!(dt > 0.0)) return;
+    for (std::size_t j = 0; j < kJointCount; ++j)
+        velocity_[j] = (ghost.joints[j].position - previous.joints[j].position) / dt;
+}
+
 HandPose GhostFilter::apply(const HandPose& ghost, double dt, const GhostSmoothing& smoothing) {
     if (!smoothing.enabled() || !(dt > 0.0)) {
         reset(ghost);

@@ -22,8 +22,11 @@ struct GhostSmoothing {
 
 class GhostFilter {
   public:
-    // Starts over from `ghost` (first sample, or after a jump).
+    // Starts over from `ghost` (first sample, or after a jump), at rest.
     void reset(const HandPose& ghost);
+    // Starts over from `ghost`, moving as it has since `previous`, `dt` before: smoothing
+    // that resumes mid-motion then knows how fast the hand goes and does not hold it back.
+    void restart(const HandPose& ghost, const HandPose& previous, double dt);
     // The smoothed ghost after a sample `dt` seconds after the last; unchanged when the
     // smoothing is off.
     HandPose apply(const HandPose& ghost, double dt, const GhostSmoothing& smoothing);

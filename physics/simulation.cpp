@@ -181,13 +181,18 @@ void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input, double 
         const bool reseat = jump > settings_.reseat_distance || lost_hand ||
                             time_s_ - slot.last_tracked_time > settings_.dropout_grace_s;
         const bool continues = slot.have_ghost && !reseat;
-        // A hand that holds or presses something follows the ghost itself: how hard it grips
-        // is how far the ghost reaches into the object, which smoothing would delay.
-        if (!continues || touching) slot.smoothing.reset(sample);
         slot.previous_ghost = continues ? slot.ghost : sample;
         slot.ghost = sample;
         slot.previous_target = continues ? slot.target : sample;
-        slot.target = slot.smoothing.apply(sample, step_dt, settings_.drive.smoothing);
+        // Only a simulated hand is smoothed (a gated one is the ghost itself), and not while it
+        // holds or presses something: how hard it grips is how far the ghost reaches into the
+        // object, which smoothing would delay.
+        if (continues && slot.simulated && !touching) {
+            slot.target = slot.smoothing.apply(sample, step_dt, settings_.drive.smoothing);
+        } else {
+            slot.smoothing.restart(sample, slot.previous_ghost, step_dt);
+            slot.target = sample;
+        }
         slot.have_ghost = true;
         slot.tracked = true;
         slot.last_tracked_time = time_s_;

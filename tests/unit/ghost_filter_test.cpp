@@ -9,7 +9,7 @@ namespace physhand {
 namespace {
 
 constexpr double kDt = 1 / 90.0;
-constexpr GhostSmoothing kOn{1.0, 3000.0};
+constexpr GhostSmoothing kOn{1.0, 3500.0};
 
 HandPose hand_at(const Vec3& wrist, double curl = 0.2) {
     HandArticulation a;
