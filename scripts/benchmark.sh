@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates BENCHMARKS.md and bench/ (CSV + one SVG per scene): every drive over
-# 1..16 substeps on the measurement scenes, scaling with the number of colliders, and the
-# layer's overhead per call (bench/overhead.json).
+# 1..16 substeps on the measurement scenes, scaling with the number of colliders, the
+# layer's overhead per call (bench/overhead.json), and the stress figures of every drive
+# over STRESS_SEEDS (default 1-100) of pathological tracking and the extreme parameters.
 # Takes several minutes; not part of the tests.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -12,6 +13,10 @@ out=$(mktemp -d)
 "$build/tests/physhand-scaling" --out "$out" --repeat "${REPEAT:-3}"
 "$build/tests/physhand-overhead" --benchmark_repetitions="${REPEAT:-3}" \
     --benchmark_out="$out/overhead.json" --benchmark_out_format=json --summary "$out/overhead.md"
+seeds=${STRESS_SEEDS:-1-100}
+PHYSHAND_STRESS_SEEDS=$seeds "$build/tests/physhand_stress_tests" \
+    --gtest_filter='Stress.RandomPathologicalTrackingStaysFiniteAndRecovers:BadInput.ExtremeParametersStayFiniteAndBounded' \
+    >"$out/stress.log" || true  # a failing run is in the report: its "failed runs"
 mkdir -p "$root/bench"
 cp "$out"/*.csv "$out"/*.svg "$out/overhead.json" "$root/bench/"
 {
@@ -26,6 +31,12 @@ cp "$out"/*.csv "$out"/*.svg "$out/overhead.json" "$root/bench/"
     echo "overhead_ns (shared/METRICS.md): the median CPU time of one call through the loader to the simulated runtime with the layer, minus the same without it (\`physhand-overhead\`, one run, ${REPEAT:-3} repetitions). Each hand locate is one frame later than the last, so the layer steps its simulation on every call it simulates. The \`xrEndFrame\` rows time whole frames of a Vulkan session on lavapipe, in which the layer intercepts only \`xrEndFrame\`, in wall time: the overlay draws on lavapipe's threads."
     echo
     cat "$out/overhead.md"
+    echo
+    echo "## Stress"
+    echo
+    echo "\`PHYSHAND_STRESS_SEEDS=$seeds physhand_stress_tests\`: randomised pathological tracking of both hands (README, Tests), per drive, at its own substeps; max_body_speed is what the dynamics asked for, before the 20 m/s limit, and 'published' the fastest hand joint or body an app was given. Then stiffness 1e4 and 1e6 on every drive at 1 substep against a 1 g grain, a 1000 kg anvil and a 50 m slab."
+    echo
+    sed -n 's/^\(stress\|extreme\): /- /p' "$out/stress.log"
 } > "$root/BENCHMARKS.md"
 rm -rf "$out"
 echo "wrote BENCHMARKS.md and bench/"
