@@ -23,13 +23,6 @@ BodyRole role_of(const btCollisionObject* o) {
     return static_cast<BodyRole>(o->getUserIndex());
 }
 
-// Hand contacts from kHandContactReach away. Bullet scales the reach to each shape (0.2 mm
-// for a finger), so a hand part that reaches a surface within the substep is found inside
-// it next time; from further away the solver stops it at the surface, and one substep per
-// frame presses a palm into a table 0.3 mm instead of 5 mm (measured, press_table). Only
-// hand pairs: colliders keep Bullet's reach, with which a thrown cube topples a pyramid.
-constexpr btScalar kHandContactReach = 0.02f;  // m
-
 class HandReachDispatcher : public btCollisionDispatcher {
   public:
     using btCollisionDispatcher::btCollisionDispatcher;
@@ -37,7 +30,7 @@ class HandReachDispatcher : public btCollisionDispatcher {
                                          const btCollisionObject* b) override {
         btPersistentManifold* m = btCollisionDispatcher::getNewManifold(a, b);
         if (role_of(a) == BodyRole::Hand || role_of(b) == BodyRole::Hand)
-            m->setContactBreakingThreshold(kHandContactReach);
+            m->setContactBreakingThreshold(static_cast<btScalar>(kHandContactReach));
         return m;
     }
 };
