@@ -9,9 +9,7 @@ namespace {
 using testing::static_box;
 
 std::array<HandPose, 2> right_hand_at(const Vec3& wrist, double curl = 0.2) {
-    HandArticulation a;
-    a.curl.fill(curl);
-    return {HandPose{}, pose_hand(HandSide::Right, Pose{wrist, Quat::Identity()}, a)};
+    return {HandPose{}, testing::right_hand(wrist, curl)};
 }
 
 TEST(Gating, AHandFarFromEveryColliderIsTheGhostExactly) {

@@ -8,13 +8,8 @@ namespace physhand {
 namespace {
 
 using testing::dynamic_box;
+using testing::right_hand;
 using testing::static_box;
-
-HandPose right_hand(const Vec3& wrist, double curl = 0.0) {
-    HandArticulation a;
-    a.curl.fill(curl);
-    return pose_hand(HandSide::Right, Pose{wrist, Quat::Identity()}, a);
-}
 
 // One frame of the paper's drive through Bullet against Algorithm 1 by hand: the ghost
 // translates by d, so every joint sphere sees the same spring; Bullet integrates
@@ -26,9 +21,9 @@ TEST(Simulation, PaperDriveFollowsAlgorithmOneThroughBullet) {
     Simulation sim(settings, Vec3::Zero());
     const Vec3 start(0.0, 1.0, 0.0);
     const Vec3 d(0.002, -0.001, 0.0005);
-    sim.step_to(1 / 90.0, {HandPose{}, right_hand(start)});
+    sim.step_to(1 / 90.0, {HandPose{}, right_hand(start, 0.0)});
     const Vec3 before = sim.hand(HandSide::Right).joints[Joint::IndexTip].position;
-    sim.step_to(2 / 90.0, {HandPose{}, right_hand(start + d)});
+    sim.step_to(2 / 90.0, {HandPose{}, right_hand(start + d, 0.0)});
     const Vec3 after = sim.hand(HandSide::Right).joints[Joint::IndexTip].position;
 
     const int n = settings.drive.substeps;
@@ -50,7 +45,7 @@ TEST(Simulation, AStaticBoxBlocksTheHandWhileTheGhostSinksIn) {
     double deepest = 0.0;
     for (int f = 1; f <= 180; ++f) {
         const double y = std::max(0.98, 1.1 - f * 0.002);  // palm ends 4 cm below the top
-        sim.step_to(f / 90.0, {HandPose{}, right_hand(Vec3(0, y, -0.05))});
+        sim.step_to(f / 90.0, {HandPose{}, right_hand(Vec3(0, y, -0.05), 0.0)});
         deepest = std::max(deepest, sim.last_max_penetration());
     }
     const PhysicalHandState& h = sim.hand(HandSide::Right);
@@ -66,7 +61,8 @@ TEST(Simulation, ShortDropoutsHoldTheHandAndLongOnesLetGo) {
     Simulation sim(SimulationSettings{}, Vec3(0, -9.81, 0));
     sim.add_collider(static_box("table", Vec3(0, 0.725, -0.4), Vec3(0.4, 0.025, 0.3)));
     int f = 1;
-    for (; f <= 20; ++f) sim.step_to(f / 90.0, {HandPose{}, right_hand(Vec3(0.1, 0.80, -0.3))});
+    for (; f <= 20; ++f)
+        sim.step_to(f / 90.0, {HandPose{}, right_hand(Vec3(0.1, 0.80, -0.3), 0.0)});
     ASSERT_TRUE(sim.hand(HandSide::Right).simulated);
     const Vec3 held = sim.hand(HandSide::Right).joints[Joint::Wrist].position;
     for (; f <= 50; ++f) {  // 0.33 s lost: within the grace period

@@ -2,12 +2,25 @@
 
 #include <string>
 
+#include "hand_skeleton.h"
 #include "scene.h"
 
 namespace physhand::testing {
 
 inline Scene sample_scene(const std::string& name) {
     return load_scene(std::string(PHYSHAND_SCENES_DIR) + "/" + name + ".json");
+}
+
+// The default hand with every finger curled by `curl`, its wrist at `wrist`.
+inline HandPose hand_pose(HandSide side, const Vec3& wrist, double curl,
+                          const Quat& orientation = Quat::Identity()) {
+    HandArticulation a;
+    a.curl.fill(curl);
+    return pose_hand(side, Pose{wrist, orientation}, a);
+}
+
+inline HandPose right_hand(const Vec3& wrist, double curl) {
+    return hand_pose(HandSide::Right, wrist, curl);
 }
 
 inline Collider static_box(const std::string& id, const Vec3& center, const Vec3& half) {

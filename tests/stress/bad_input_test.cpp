@@ -20,15 +20,15 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 using Bench = testing::StressBench;
-using testing::hand_at;
+using testing::right_hand;
 
 TEST(BadInput, NonFiniteAndDegenerateSamplesAreRejected) {
     Bench b{SimulationSettings{}};
     const Vec3 wrist(0.13, 0.86, -0.33);
     int f = 1;
-    for (; f <= 30; ++f) b.sim.step_to(f / 90.0, {HandPose{}, hand_at(wrist, 0.3)});
+    for (; f <= 30; ++f) b.sim.step_to(f / 90.0, {HandPose{}, right_hand(wrist, 0.3)});
     for (int kind = 0; kind < 4; ++kind, ++f) {
-        HandPose bad = hand_at(wrist, 0.3);
+        HandPose bad = right_hand(wrist, 0.3);
         Pose& j = bad.joints[index_of(Joint::IndexTip)];
         if (kind == 0) j.position.x() = kNaN;
         if (kind == 1) j.position.y() = kInf;
@@ -40,7 +40,7 @@ TEST(BadInput, NonFiniteAndDegenerateSamplesAreRejected) {
     }
     EXPECT_EQ(b.sim.guard_counters().rejected_samples, 4u);
     // A non-unit quaternion is only normalised, not rejected.
-    HandPose scaled = hand_at(wrist, 0.3);
+    HandPose scaled = right_hand(wrist, 0.3);
     for (Pose& p : scaled.joints) p.orientation.coeffs() *= 3.0;
     b.sim.step_to(++f / 90.0, {HandPose{}, scaled});
     EXPECT_EQ(b.sim.guard_counters().rejected_samples, 4u);
@@ -52,16 +52,16 @@ TEST(BadInput, TeleportsReseatTheHandWithoutLaunchingAnything) {
     Bench b{settings};
     const Vec3 home(0.1, 0.80, -0.30);
     int f = 1;
-    for (; f <= 30; ++f) b.sim.step_to(f / 90.0, {HandPose{}, hand_at(home, 0.5)});
+    for (; f <= 30; ++f) b.sim.step_to(f / 90.0, {HandPose{}, right_hand(home, 0.5)});
     double fastest = 0.0;
     for (int jump = 0; jump < 6; ++jump) {
         const Vec3 away = home + Vec3(jump % 2 ? 10.0 : -3.0, 0, 0);
         for (int i = 0; i < 5; ++i, ++f) {
-            b.sim.step_to(f / 90.0, {HandPose{}, hand_at(away, 0.5)});
+            b.sim.step_to(f / 90.0, {HandPose{}, right_hand(away, 0.5)});
             fastest = std::max(fastest, b.sim.body_state(b.cube)->linear_velocity.norm());
         }
         for (int i = 0; i < 5; ++i, ++f) {  // back, into the cube
-            b.sim.step_to(f / 90.0, {HandPose{}, hand_at(home - Vec3(0, 0.03, 0), 0.5)});
+            b.sim.step_to(f / 90.0, {HandPose{}, right_hand(home - Vec3(0, 0.03, 0), 0.5)});
             fastest = std::max(fastest, b.sim.body_state(b.cube)->linear_velocity.norm());
             ASSERT_TRUE(b.sim.state_is_finite());
         }
@@ -106,7 +106,7 @@ TEST(BadInput, ExtremeParametersStayFiniteAndBounded) {
             for (int f = 1; f <= 210; ++f) {
                 const double x = 0.16 * std::sin(std::max(0, f - 30) * 2 * std::numbers::pi / 180);
                 const double y = 0.79 + 0.1 * std::max(0, 30 - f) / 30.0;
-                sim.step_to(f / 90.0, {HandPose{}, hand_at(Vec3(x, y, -0.3), 0.4)});
+                sim.step_to(f / 90.0, {HandPose{}, right_hand(Vec3(x, y, -0.3), 0.4)});
                 if (!sim.state_is_finite()) ++nonfinite;
                 fastest = std::max(fastest, sim.last_max_body_speed());
                 EXPECT_LE(fastest_published(sim, {grain, anvil}), settings.max_body_speed)
@@ -142,7 +142,7 @@ TEST(BadInput, AThousandCollidersStayFiniteAndBounded) {
     for (int f = 1; f <= 120; ++f) {
         const double x = -0.4 + 0.8 * std::max(0, f - 30) / 90.0;
         const double y = 0.79 + 0.1 * std::max(0, 30 - f) / 30.0;
-        sim.step_to(f / 90.0, {HandPose{}, hand_at(Vec3(x, y, -0.3), 0.5)});
+        sim.step_to(f / 90.0, {HandPose{}, right_hand(Vec3(x, y, -0.3), 0.5)});
         ASSERT_TRUE(sim.state_is_finite()) << "frame " << f;
         EXPECT_LE(sim.last_max_body_speed(), SimulationSettings{}.max_body_speed) << f;
         touched = std::max<int>(touched, static_cast<int>(std::count_if(

@@ -25,17 +25,11 @@ constexpr double kContactMemoryS = 0.25;    // as tracking error counts joints (
 // Where each hand hovers while tracking is clean: above the table, beside the cube.
 const std::array<Vec3, 2> kHome = {Vec3(-0.1, 0.85, -0.30), Vec3(0.1, 0.85, -0.30)};
 
-HandPose hand_pose(HandSide side, const Vec3& wrist, const Quat& orientation, double curl) {
-    HandArticulation a;
-    a.curl.fill(curl);
-    return pose_hand(side, Pose{wrist, orientation}, a);
-}
-
 // The hand placed so that its palm joint is at `palm`.
 HandPose hand_with_palm_at(HandSide side, const Vec3& palm, const Quat& orientation, double curl) {
     const Vec3 palm_from_wrist =
-        hand_pose(side, Vec3::Zero(), orientation, curl)[Joint::Palm].position;
-    return hand_pose(side, palm - palm_from_wrist, orientation, curl);
+        hand_pose(side, Vec3::Zero(), curl, orientation)[Joint::Palm].position;
+    return hand_pose(side, palm - palm_from_wrist, curl, orientation);
 }
 
 // Palm against one side of the cube, pressed `depth` into it: with the other hand doing the
@@ -45,7 +39,7 @@ HandPose squeezing(HandSide side, const Vec3& cube, double depth) {
     // Palms (-Y) face the cube, fingers (-Z) point away from the body.
     const Quat facing(Eigen::AngleAxisd(-outward * std::numbers::pi / 2, Vec3::UnitZ()));
     const double reach =
-        kStressCubeHalf + hand_pose(side, Vec3::Zero(), facing, 0.0).radii[index_of(Joint::Palm)];
+        kStressCubeHalf + hand_pose(side, Vec3::Zero(), 0.0, facing).radii[index_of(Joint::Palm)];
     return hand_with_palm_at(side, cube + Vec3(outward * (reach - depth), 0, 0), facing, 0.5);
 }
 
@@ -119,14 +113,12 @@ PathologyResult run_pathology(const DriveSettings& drive, std::uint64_t seed) {
             } else {
                 // Both hands where the right one is, while they overlap.
                 const Vec3 home = kHome[overlap_frames > 0 ? 1 : s];
-                g = hand_pose(side, home + Vec3(0.05 * std::sin(t * 3), -0.1 * u(), 0),
-                              Quat::Identity(), u());
+                g = hand_pose(side, home + Vec3(0.05 * std::sin(t * 3), -0.1 * u(), 0), u());
             }
             HandTrouble& h = trouble[s];
             const double r = u();
             if (r < 0.03) {  // teleport up to 10 m
-                g = hand_pose(side, Vec3(20 * u() - 10, 10 * u(), 20 * u() - 10), Quat::Identity(),
-                              0.2);
+                g = hand_pose(side, Vec3(20 * u() - 10, 10 * u(), 20 * u() - 10), 0.2);
             } else if (r < 0.05) {  // into the cube, or into the table
                 const Vec3 inside = u() < 0.5 ? cube : Vec3(cube.x(), 0.71, cube.z());
                 g = hand_with_palm_at(side, inside, Quat::Identity(), u());
@@ -170,9 +162,8 @@ PathologyResult run_pathology(const DriveSettings& drive, std::uint64_t seed) {
     }
 
     // Recovery: clean tracking of both hands above the table.
-    const std::array<HandPose, 2> clean = {
-        hand_pose(HandSide::Left, kHome[0], Quat::Identity(), 0.2),
-        hand_pose(HandSide::Right, kHome[1], Quat::Identity(), 0.2)};
+    const std::array<HandPose, 2> clean = {hand_pose(HandSide::Left, kHome[0], 0.2),
+                                           hand_pose(HandSide::Right, kHome[1], 0.2)};
     result.recovery_s = kInf;
     const double stopped = t;
     const int window = static_cast<int>(std::lround(kRecoveryWindowS / kFrameS));

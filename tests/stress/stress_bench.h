@@ -5,12 +5,6 @@
 
 namespace physhand::testing {
 
-inline HandPose hand_at(const Vec3& wrist, double curl) {
-    HandArticulation a;
-    a.curl.fill(curl);
-    return pose_hand(HandSide::Right, Pose{wrist, Quat::Identity()}, a);
-}
-
 inline constexpr double kStressCubeHalf = 0.03;
 
 // A table with a cube the hands rest on, so every pathology happens in contact, and a floor

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <random>
 
+#include "../physics/test_scenes.h"
+
 namespace physhand {
 namespace {
 
@@ -12,9 +14,7 @@ constexpr double kDt = 1 / 90.0;
 constexpr GhostSmoothing kOn{1.0, 3500.0};
 
 HandPose hand_at(const Vec3& wrist, double curl = 0.2) {
-    HandArticulation a;
-    a.curl.fill(curl);
-    return pose_hand(HandSide::Right, Pose{wrist, Quat::Identity()}, a);
+    return testing::right_hand(wrist, curl);
 }
 
 TEST(GhostFilter, OffPassesTheGhostThrough) {
