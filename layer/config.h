@@ -23,8 +23,6 @@ struct Config {
     std::vector<Collider> colliders;
 };
 
-inline constexpr int kMaxSubsteps = 64;
-
 // Values replacing a built-in drive's own; absent keeps the drive's value.
 struct DriveOverrides {
     std::optional<double> stiffness;

@@ -40,6 +40,9 @@ struct DriveSettings {
 // extension, tests/fuzz). A real hand pushes with a hundredth of it.
 inline constexpr double kMaxDriveForce = 1e4;  // N
 
+// The most substeps per 90 Hz frame a drive is given (the extension's and the config's limit).
+inline constexpr int kMaxSubsteps = 64;
+
 // The drives the project ships; the first is the default.
 const std::vector<DriveSettings>& builtin_drives();
 const DriveSettings& default_drive();

@@ -21,18 +21,8 @@ void GhostFilter::reset(const HandPose& ghost) {
     velocity_.fill(Vec3::Zero());
 }
 
-void GhostFilter::restart(const HandPose& ghost, const HandPose& previous, double dt) {
-    reset(ghost);
-    if (!(dt > 0.0)) return;
-    for (std::size_t j = 0; j < kJointCount; ++j)
-        velocity_[j] = (ghost.joints[j].position - previous.joints[j].position) / dt;
-}
-
-HandPose GhostFilter::apply(const HandPose& ghost, double dt, const GhostSmoothing& smoothing) {
-    if (!smoothing.enabled() || !(dt > 0.0)) {
-        reset(ghost);
-        return ghost;
-    }
+double GhostFilter::estimate_speed(const HandPose& ghost, double dt,
+                                   const GhostSmoothing& smoothing) {
     const double a_velocity = blend(smoothing.derivative_cutoff_hz, dt);
     Vec3 mean = Vec3::Zero();
     for (std::size_t j = 0; j < kJointCount; ++j) {
@@ -40,13 +30,27 @@ HandPose GhostFilter::apply(const HandPose& ghost, double dt, const GhostSmoothi
         velocity_[j] += a_velocity * (raw - velocity_[j]);
         mean += velocity_[j];
     }
-    const double hand_speed = mean.norm() / kJointCount;
+    return mean.norm() / kJointCount;
+}
+
+void GhostFilter::follow(const HandPose& ghost, double dt, const GhostSmoothing& smoothing) {
+    if (smoothing.enabled() && dt > 0.0) estimate_speed(ghost, dt, smoothing);
+    state_ = ghost;
+}
+
+HandPose GhostFilter::apply(const HandPose& ghost, double dt, const GhostSmoothing& smoothing) {
+    if (!smoothing.enabled() || !(dt > 0.0)) {
+        reset(ghost);
+        return ghost;
+    }
+    const double hand_speed = estimate_speed(ghost, dt, smoothing);
     HandPose out = ghost;
     for (std::size_t j = 0; j < kJointCount; ++j) {
         const double speed =
             std::max(hand_speed, velocity_[j].norm() - smoothing.joint_speed_floor);
         const double a = blend(smoothing.min_cutoff_hz + smoothing.beta * speed, dt);
-        out.joints[j] = interpolate(state_.joints[j], ghost.joints[j], a);
+        Vec3& p = out.joints[j].position;
+        p = state_.joints[j].position + a * (p - state_.joints[j].position);
     }
     state_ = out;
     return out;

@@ -7,8 +7,10 @@
 namespace physhand {
 
 // How much the drive smooths the ghost it follows: a One-Euro filter (Casiez, Roussel and
-// Vogel 2012) per joint, position and orientation, whose cutoff rises with speed, so a still
-// hand's tracking noise is filtered out while a moving hand is followed with little lag.
+// Vogel 2012) on each joint's position, whose cutoff rises with speed, so a still hand's
+// tracking noise is filtered out while a moving hand is followed with little lag.
+// Orientations pass unsmoothed: a knuckle turns in place, where no speed would lift its
+// cutoff, and the bone it carries would trail.
 // The speed is the faster of the whole hand's (the mean of its joints' velocities, where
 // per-joint noise averages out) and the joint's own less `joint_speed_floor` (the noise's
 // share of it), so fingers that move while the hand stands still are not held back.
@@ -24,14 +26,18 @@ class GhostFilter {
   public:
     // Starts over from `ghost` (first sample, or after a jump), at rest.
     void reset(const HandPose& ghost);
-    // Starts over from `ghost`, moving as it has since `previous`, `dt` before: smoothing
-    // that resumes mid-motion then knows how fast the hand goes and does not hold it back.
-    void restart(const HandPose& ghost, const HandPose& previous, double dt);
-    // The smoothed ghost after a sample `dt` seconds after the last; unchanged when the
-    // smoothing is off.
+    // Passes a sample `dt` after the last through unsmoothed, still estimating the hand's
+    // speed, so that smoothing that resumes mid-motion (after a touch, or once the hand is
+    // simulated again) knows how fast the hand goes.
+    void follow(const HandPose& ghost, double dt, const GhostSmoothing& smoothing);
+    // The smoothed ghost after a sample `dt` after the last; unchanged when the smoothing is
+    // off.
     HandPose apply(const HandPose& ghost, double dt, const GhostSmoothing& smoothing);
 
   private:
+    // Updates the speed estimates with a sample `dt` after the last; the hand's speed.
+    double estimate_speed(const HandPose& ghost, double dt, const GhostSmoothing& smoothing);
+
     HandPose state_;
     std::array<Vec3, kJointCount> velocity_{};
 };

@@ -159,14 +159,14 @@ void PhysicalHand::detach(World& world) {
     world_ = nullptr;
 }
 
-Pose PhysicalHand::target_of(const Body& body, const HandPose& ghost) const {
-    return ghost[body.anchor] * body.offset;
+Pose PhysicalHand::target_of(const Body& body, const HandPose& target) const {
+    return target[body.anchor] * body.offset;
 }
 
-void PhysicalHand::seat(const HandPose& ghost, const HandPose& previous_ghost, double frame_dt) {
+void PhysicalHand::seat(const HandPose& target, const HandPose& previous_target, double frame_dt) {
     for (auto& b : bodies_) {
-        const Pose now = target_of(*b, ghost);
-        const Pose before = target_of(*b, previous_ghost);
+        const Pose now = target_of(*b, target);
+        const Pose before = target_of(*b, previous_target);
         btRigidBody& r = *b->rigid;
         const btTransform t = to_bt(now);
         r.setWorldTransform(t);
@@ -181,13 +181,13 @@ void PhysicalHand::seat(const HandPose& ghost, const HandPose& previous_ghost, d
     }
 }
 
-void PhysicalHand::drive(const HandPose& target, const HandPose& previous_ghost,
-                         const HandPose& ghost, double frame_dt, double h) {
+void PhysicalHand::drive(const HandPose& goal_pose, const HandPose& previous_target,
+                         const HandPose& target, double frame_dt, double h) {
     for (auto& b : bodies_) {
         btRigidBody& r = *b->rigid;
-        const Pose goal = target_of(*b, target);
-        const Pose before = target_of(*b, previous_ghost);
-        const Pose now = target_of(*b, ghost);
+        const Pose goal = target_of(*b, goal_pose);
+        const Pose before = target_of(*b, previous_target);
+        const Pose now = target_of(*b, target);
         const LinearState body{from_bt(r.getCenterOfMassPosition()),
                                from_bt(r.getLinearVelocity())};
         const LinearState aim{goal.position, (now.position - before.position) / frame_dt};
@@ -223,17 +223,17 @@ void PhysicalHand::set_contact_response(bool enabled) {
     }
 }
 
-void PhysicalHand::read(const HandPose& ghost, PhysicalHandState& out) const {
-    out.joints.active = ghost.active;
-    out.joints.radii = ghost.radii;
+void PhysicalHand::read(const HandPose& target, PhysicalHandState& out) const {
+    out.joints.active = target.active;
+    out.joints.radii = target.radii;
     for (std::size_t j = 0; j < kJointCount; ++j) {
         const Body& b = *bodies_[static_cast<std::size_t>(body_of_joint_[j])];
         const btRigidBody& r = *b.rigid;
         Pose body_pose = from_bt(r.getWorldTransform());
         if (drive_.body_model == BodyModel::JointSpheres) {
-            body_pose.orientation = target_of(b, ghost).orientation;
+            body_pose.orientation = target_of(b, target).orientation;
         }
-        const Pose anchor_to_joint = ghost[b.anchor].inverse() * ghost.joints[j];
+        const Pose anchor_to_joint = target[b.anchor].inverse() * target.joints[j];
         Pose joint = body_pose * b.offset.inverse() * anchor_to_joint;
         joint.orientation.normalize();
         out.joints.joints[j] = joint;

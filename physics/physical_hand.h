@@ -31,18 +31,19 @@ class PhysicalHand {
     void detach(World& world);
     bool attached() const { return world_ != nullptr; }
 
-    // Places every body exactly at its target with the given ghost motion.
-    void seat(const HandPose& ghost, const HandPose& previous_ghost, double frame_dt);
-    // Applies drive forces for one substep of length h toward `target` (the ghost at the
-    // end of the substep), `previous_ghost`/`ghost` giving the ghost velocity over the frame.
-    void drive(const HandPose& target, const HandPose& previous_ghost, const HandPose& ghost,
+    // Places every body exactly where `target` puts it, moving as it has since
+    // `previous_target`, `frame_dt` before.
+    void seat(const HandPose& target, const HandPose& previous_target, double frame_dt);
+    // Applies drive forces for one substep of length h toward `goal` (the target at the end of
+    // the substep), `previous_target`/`target` giving the target's velocity over the frame.
+    void drive(const HandPose& goal, const HandPose& previous_target, const HandPose& target,
                double frame_dt, double h);
     // While re-seating, bodies pass through colliders until they are clear of them.
     void set_contact_response(bool enabled);
     bool contact_response() const { return contact_response_; }
 
-    // Physical joints for the current body poses, using `ghost` for carried offsets.
-    void read(const HandPose& ghost, PhysicalHandState& out) const;
+    // Physical joints for the current body poses, using `target` for carried offsets.
+    void read(const HandPose& target, PhysicalHandState& out) const;
     // Which body a collision object is, or -1.
     int body_index(const btCollisionObject* object) const;
     std::size_t body_count() const { return bodies_.size(); }
@@ -56,7 +57,7 @@ class PhysicalHand {
 
   private:
     struct Body;
-    Pose target_of(const Body& body, const HandPose& ghost) const;
+    Pose target_of(const Body& body, const HandPose& target) const;
 
     HandSide side_;
     DriveSettings drive_;

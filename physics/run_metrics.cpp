@@ -77,12 +77,12 @@ void RunMetrics::add_body(double t, std::size_t body, const BodyState& state) {
     b.last_contact_t.reset();
 }
 
-void RunMetrics::add_frame(double step_us, double max_penetration_m, double max_speed,
-                           bool nonfinite) {
-    step_us_.push_back(step_us);
-    max_penetration_m_ = std::max(max_penetration_m_, max_penetration_m);
-    max_speed_ = std::max(max_speed_, max_speed);
-    if (nonfinite) ++nonfinite_;
+void RunMetrics::add_frame(const Frame& frame) {
+    step_us_.push_back(frame.step_us);
+    max_penetration_m_ = std::max(max_penetration_m_, frame.max_penetration_m);
+    max_speed_ = std::max(max_speed_, frame.max_body_speed);
+    max_requested_speed_ = std::max(max_requested_speed_, frame.max_requested_speed);
+    if (frame.nonfinite) ++nonfinite_;
     for (int side = 0; side < 2; ++side) {
         if (touching_now_[side]) ++frames_touching_[side];
     }
@@ -104,6 +104,7 @@ MetricsSummary RunMetrics::summary() const {
         s.ghost_jitter_mm = std::sqrt(ghost_jitter_sq_ / static_cast<double>(jitter_n_)) * 1e3;
     }
     s.max_body_speed = max_speed_;
+    s.max_requested_speed = max_requested_speed_;
     s.frames = static_cast<int>(step_us_.size());
     s.nonfinite_count = nonfinite_;
     s.frames_touching_bodies = frames_touching_;

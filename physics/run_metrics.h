@@ -18,7 +18,10 @@ struct Release {
     double hand_speed = 0.0;  // the ghost palm's at the last contact
     double body_speed = 0.0;  // 50 ms later
     double palm_speed = 0.0;  // the ghost palm's, 50 ms later
-    double ratio() const { return body_speed / palm_speed; }
+    // None when the palm had stopped by then (a speed under 1 mm/s).
+    std::optional<double> ratio() const {
+        return palm_speed >= 1e-3 ? std::optional(body_speed / palm_speed) : std::nullopt;
+    }
 };
 
 struct MetricsSummary {
@@ -27,9 +30,10 @@ struct MetricsSummary {
     double max_penetration_mm = 0.0;
     double step_us_median = 0.0;
     double step_us_p99 = 0.0;
-    double jitter_mm = 0.0;        // physical joints, frame to frame, not in contact
-    double ghost_jitter_mm = 0.0;  // the same for the ghost (the input noise)
-    double max_body_speed = 0.0;
+    double jitter_mm = 0.0;            // physical joints, frame to frame, not in contact
+    double ghost_jitter_mm = 0.0;      // the same for the ghost (the input noise)
+    double max_body_speed = 0.0;       // m/s, what bodies moved with
+    double max_requested_speed = 0.0;  // m/s, what the dynamics asked for before the limit
     int frames = 0;
     int nonfinite_count = 0;
     std::array<int, 2> frames_touching_bodies{};  // by HandSide: it touched a dynamic body
@@ -50,8 +54,16 @@ class RunMetrics {
                   const std::array<bool, kJointCount>& in_contact);
     // A dynamic body at the same frame, after the hands; `body` numbers it in this run.
     void add_body(double t, std::size_t body, const BodyState& state);
+    // What one frame's step measured (Simulation's figures of the frame).
+    struct Frame {
+        double step_us = 0.0;
+        double max_penetration_m = 0.0;
+        double max_body_speed = 0.0;
+        double max_requested_speed = 0.0;
+        bool nonfinite = false;
+    };
     // Once per frame, after its hands and bodies.
-    void add_frame(double step_us, double max_penetration_m, double max_speed, bool nonfinite);
+    void add_frame(const Frame& frame);
     MetricsSummary summary() const;
 
   private:
@@ -80,6 +92,7 @@ class RunMetrics {
     std::vector<double> step_us_;
     double max_penetration_m_ = 0.0;
     double max_speed_ = 0.0;
+    double max_requested_speed_ = 0.0;
     int nonfinite_ = 0;
 };
 

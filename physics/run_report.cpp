@@ -27,6 +27,7 @@ nlohmann::json to_json(const RunResult& r) {
                       {"orientation", {q.x(), q.y(), q.z(), q.w()}}};
     }
     const MetricsSummary& m = r.metrics;
+    const std::optional<double> ratio = m.throw_release ? m.throw_release->ratio() : std::nullopt;
     nlohmann::json release;  // null: nothing was thrown
     if (m.throw_release) {
         const Release& t = *m.throw_release;
@@ -36,7 +37,8 @@ nlohmann::json to_json(const RunResult& r) {
                    {"body_speed", t.body_speed},
                    {"palm_speed", t.palm_speed}};
     }
-    // An app sees no contact distances through the API: the layer path cannot measure it.
+    // An app sees neither contact distances nor speeds before the limit through the API: the
+    // layer path cannot measure them.
     const bool through_layer = r.path == "layer";
     return {
         {"scene", r.scene},
@@ -54,8 +56,9 @@ nlohmann::json to_json(const RunResult& r) {
         {"jitter_mm", m.jitter_mm},
         {"ghost_jitter_mm", m.ghost_jitter_mm},
         {"max_body_speed", m.max_body_speed},
-        {"release_speed_ratio",
-         m.throw_release ? nlohmann::json(m.throw_release->ratio()) : nlohmann::json()},
+        {"max_requested_speed",
+         through_layer ? nlohmann::json() : nlohmann::json(m.max_requested_speed)},
+        {"release_speed_ratio", ratio ? nlohmann::json(*ratio) : nlohmann::json()},
         {"release", release},
         {"frames", m.frames},
         {"nonfinite_count", m.nonfinite_count},
@@ -78,9 +81,9 @@ std::string summary_line(const RunResult& r) {
         std::snprintf(buf, sizeof buf, "  penetration %.2f mm", r.metrics.max_penetration_mm);
         line += buf;
     }
-    if (r.metrics.throw_release) {
-        std::snprintf(buf, sizeof buf, "  release speed ratio %.2f",
-                      r.metrics.throw_release->ratio());
+    if (const auto ratio =
+            r.metrics.throw_release ? r.metrics.throw_release->ratio() : std::nullopt) {
+        std::snprintf(buf, sizeof buf, "  release speed ratio %.2f", *ratio);
         line += buf;
     }
     for (const PredicateResult& p : r.predicates) {

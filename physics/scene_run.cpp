@@ -79,8 +79,11 @@ RunResult run_scene(const Scene& input, const SimulationSettings& settings,
             if (scene.colliders[i].motion == Motion::Dynamic)
                 metrics.add_body(t, body++, *sim.body_state(handles[i]));
         }
-        metrics.add_frame(step_us, sim.last_max_penetration(), sim.last_max_body_speed(),
-                          !sim.state_is_finite());
+        metrics.add_frame({.step_us = step_us,
+                           .max_penetration_m = sim.last_max_penetration(),
+                           .max_body_speed = sim.last_max_body_speed(),
+                           .max_requested_speed = sim.last_max_requested_speed(),
+                           .nonfinite = !sim.state_is_finite()});
         predicates.add_frame(t, lookup, wrists);
     }
 

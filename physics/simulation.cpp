@@ -66,7 +66,7 @@ struct Simulation::HandSlot {
     HandPose previous_ghost;             // ghost at the previous step
     HandPose target;                     // what the drive follows: the ghost, smoothed
     HandPose previous_target;            // target at the previous step
-    GhostFilter smoothing;
+    GhostFilter filter;
     bool tracked = false;  // this step's sample was valid
     bool have_ghost = false;
     bool simulated = false;
@@ -187,10 +187,13 @@ void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input, double 
         // Only a simulated hand is smoothed (a gated one is the ghost itself), and not while it
         // holds or presses something: how hard it grips is how far the ghost reaches into the
         // object, which smoothing would delay.
-        if (continues && slot.simulated && !touching) {
-            slot.target = slot.smoothing.apply(sample, step_dt, settings_.drive.smoothing);
+        if (!continues) {
+            slot.filter.reset(sample);
+            slot.target = sample;
+        } else if (slot.simulated && !touching) {
+            slot.target = slot.filter.apply(sample, step_dt, settings_.drive.smoothing);
         } else {
-            slot.smoothing.restart(sample, slot.previous_ghost, step_dt);
+            slot.filter.follow(sample, step_dt, settings_.drive.smoothing);
             slot.target = sample;
         }
         slot.have_ghost = true;
@@ -271,7 +274,7 @@ void Simulation::step_to(double time_s, const std::array<HandPose, 2>& ghosts) {
 void Simulation::step_substeps(int substeps) {
     last_substeps_ = 0;
     last_max_penetration_ = 0.0;
-    last_max_body_speed_ = 0.0;
+    last_speeds_ = {};
     contacts_.clear();
     world_->clear_touched();
     for (auto& slot : hands_) slot->state.in_contact = {};
@@ -294,7 +297,7 @@ void Simulation::step_substeps(int substeps) {
         }
         const SpeedCheck speeds = world_->step(h, fraction);
         guards_.speed_clamps += static_cast<std::uint64_t>(speeds.clamped);
-        last_max_body_speed_ = std::max(last_max_body_speed_, speeds.fastest);
+        last_speeds_.add(speeds);
         ++last_substeps_;
 
         std::array<bool, 2> penetrating{};

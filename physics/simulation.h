@@ -10,6 +10,7 @@
 #include "drive.h"
 #include "hand_skeleton.h"
 #include "scene.h"
+#include "speed_limit.h"
 
 namespace physhand {
 
@@ -103,11 +104,13 @@ class Simulation {
     double last_max_penetration() const { return last_max_penetration_; }
     const GuardCounters& guard_counters() const { return guards_; }
     int last_substeps() const { return last_substeps_; }
-    // Fastest linear speed the dynamics gave any simulated body (hand part or awake dynamic
-    // collider) in a substep of the last step (infinity if not finite). No body moves faster
-    // than settings().max_body_speed: the limit scales it down before it moves (counted in
-    // speed_clamps). This says what the drive and the contacts asked for.
-    double last_max_body_speed() const { return last_max_body_speed_; }
+    // Fastest linear speed any simulated body (hand part or awake dynamic collider) moved with
+    // in a substep of the last step: never over settings().max_body_speed, which Bullet's
+    // step applies between its solver and its integration of positions.
+    double last_max_body_speed() const { return last_speeds_.fastest; }
+    // The fastest the drive and the contacts asked for, before that limit (infinity if not
+    // finite): over the limit, the limit acted (speed_clamps counts it).
+    double last_max_requested_speed() const { return last_speeds_.requested; }
 
   private:
     struct HandSlot;
@@ -126,7 +129,7 @@ class Simulation {
     std::int64_t tick_ = 0;
     bool started_ = false;
     double last_max_penetration_ = 0.0;
-    double last_max_body_speed_ = 0.0;
+    SpeedCheck last_speeds_;
     int last_substeps_ = 0;
     GuardCounters guards_;
 };

@@ -10,8 +10,9 @@ inline constexpr double kMaxAngularSpeed = 100.0;  // rad/s
 
 // What limiting the speeds of some bodies found.
 struct SpeedCheck {
-    int clamped = 0;       // bodies whose linear speed was over the limit (or not finite)
-    double fastest = 0.0;  // largest linear speed before limiting, m/s; inf if not finite
+    int clamped = 0;         // bodies slowed down (linear or angular speed over, or not finite)
+    double requested = 0.0;  // largest linear speed before limiting, m/s; inf if not finite
+    double fastest = 0.0;    // largest linear speed after it: what the bodies move with
     void add(const SpeedCheck& other);
 };
 

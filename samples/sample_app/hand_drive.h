@@ -6,9 +6,6 @@
 
 namespace physhand::sample {
 
-// The most substeps per frame xrSetHandDrivePHYSHAND takes (XrHandDriveInfoPHYSHAND).
-inline constexpr int kMaxDriveSubsteps = 64;
-
 // Gives both hands of `session` the builtin drive named by `drive`, with its substeps, through
 // xrSetHandDrivePHYSHAND, so that the drive the sample reports is the one that ran whatever
 // the layer's config says. Throws XrCallError for a failed call, std::runtime_error for a

@@ -97,10 +97,10 @@ int main(int argc, char** argv) {
             drive_options.drive = option_value(i, argc, argv);
         } else if (arg == "--substeps") {
             const std::string text = option_value(i, argc, argv);
-            const auto n = number_in(text, 1, physhand::sample::kMaxDriveSubsteps, true);
+            const auto n = number_in(text, 1, physhand::kMaxSubsteps, true);
             if (!n) {
                 return usage_error("--substeps: \"" + text + "\" is not a whole number from 1 to " +
-                                   std::to_string(physhand::sample::kMaxDriveSubsteps));
+                                   std::to_string(physhand::kMaxSubsteps));
             }
             drive_options.substeps = static_cast<int>(*n);
         } else if (arg == "--view-size") {

@@ -70,8 +70,8 @@ void RunObserver::add_frame(double t, double step_us, const std::array<LocatedHa
         finite = finite && is_finite(c.pose) && is_finite(c.linearVelocity) &&
                  is_finite(c.angularVelocity);
     }
-    // Penetration depths are not visible through the API.
-    metrics_.add_frame(step_us, 0.0, max_speed, !finite);
+    // Penetration depths and speeds before the limit are not visible through the API.
+    metrics_.add_frame({.step_us = step_us, .max_body_speed = max_speed, .nonfinite = !finite});
     predicates_.add_frame(
         t,
         [this](const std::string& id) -> std::optional<BodyState> {

@@ -4,9 +4,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace physhand::testing {
@@ -25,7 +29,7 @@ TEST(Stress, RandomPathologicalTrackingStaysFiniteAndRecovers) {
     }
     struct Tally {
         int runs = 0, frames = 0, nonfinite = 0, failed = 0;
-        double max_speed = 0.0, max_published = 0.0, limit = 0.0;
+        double max_speed = 0.0, max_requested = 0.0, limit = 0.0;
         std::uint64_t clamps = 0;
         std::vector<double> recovery_s;
     };
@@ -42,7 +46,7 @@ TEST(Stress, RandomPathologicalTrackingStaysFiniteAndRecovers) {
             t.frames += r.frames;
             t.nonfinite += r.nonfinite_count;
             t.max_speed = std::max(t.max_speed, r.max_body_speed);
-            t.max_published = std::max(t.max_published, r.max_published_speed);
+            t.max_requested = std::max(t.max_requested, r.max_requested_speed);
             t.clamps += r.speed_clamps;
             t.limit = r.speed_limit;
             t.recovery_s.push_back(r.recovery_s);
@@ -50,7 +54,7 @@ TEST(Stress, RandomPathologicalTrackingStaysFiniteAndRecovers) {
             ++t.failed;
             ADD_FAILURE() << "drive " << drive.name << " seed " << seed << ": nonfinite_count "
                           << r.nonfinite_count << ", max_body_speed " << r.max_body_speed
-                          << " m/s, published " << r.max_published_speed << " m/s (limit "
+                          << " m/s (requested " << r.max_requested_speed << ", limit "
                           << r.speed_limit << "), recovery_s " << r.recovery_s << " (limit "
                           << kMaxRecoveryS << ")\n  replay: PHYSHAND_STRESS_SEEDS=" << seed
                           << " PHYSHAND_STRESS_DRIVE=" << drive.name << " " << binary
@@ -63,13 +67,41 @@ TEST(Stress, RandomPathologicalTrackingStaysFiniteAndRecovers) {
         std::cout << "stress: drive " << name << ": seeds " << plan.first_seed << "-" << seed - 1
                   << " (" << t.runs << " runs, " << t.frames << " frames), nonfinite_count "
                   << t.nonfinite << ", max_body_speed " << t.max_speed << " m/s (limit " << t.limit
-                  << "; published at most " << t.max_published << ", speed_clamps " << t.clamps
+                  << "; requested at most " << t.max_requested << ", speed_clamps " << t.clamps
                   << "), recovery_s median " << rec[rec.size() / 2] << " max " << rec.back()
                   << ", failed runs " << t.failed << "\n";
     }
 }
 
+// The plan's variables as they were, put back when it goes (a long run's plan survives this
+// test when it runs in the same process).
+class SavedPlanEnvironment {
+  public:
+    SavedPlanEnvironment() {
+        for (const char* name : kNames) {
+            const char* value = std::getenv(name);
+            saved_.emplace_back(name, value ? std::optional<std::string>(value) : std::nullopt);
+        }
+    }
+    ~SavedPlanEnvironment() {
+        for (const auto& [name, value] : saved_) {
+            if (value)
+                ::setenv(name, value->c_str(), 1);
+            else
+                ::unsetenv(name);
+        }
+    }
+    SavedPlanEnvironment(const SavedPlanEnvironment&) = delete;
+    SavedPlanEnvironment& operator=(const SavedPlanEnvironment&) = delete;
+
+  private:
+    static constexpr const char* kNames[] = {"PHYSHAND_STRESS_SEEDS", "PHYSHAND_STRESS_SECONDS",
+                                             "PHYSHAND_STRESS_DRIVE"};
+    std::vector<std::pair<const char*, std::optional<std::string>>> saved_;
+};
+
 TEST(Stress, PlanComesFromTheEnvironmentAndRejectsNonsense) {
+    const SavedPlanEnvironment saved;
     ::setenv("PHYSHAND_STRESS_SEEDS", "5-9", 1);
     ::setenv("PHYSHAND_STRESS_SECONDS", "2", 1);
     ::setenv("PHYSHAND_STRESS_DRIVE", "paper", 1);
@@ -90,8 +122,6 @@ TEST(Stress, PlanComesFromTheEnvironmentAndRejectsNonsense) {
     ::setenv("PHYSHAND_STRESS_DRIVE", "paper", 1);
     ::setenv("PHYSHAND_STRESS_SECONDS", "1.5", 1);
     EXPECT_THROW(stress_plan_from_env(), std::invalid_argument);
-    ::unsetenv("PHYSHAND_STRESS_SECONDS");
-    ::unsetenv("PHYSHAND_STRESS_DRIVE");
 }
 
 TEST(Stress, ARunIsReplayableFromItsSeed) {

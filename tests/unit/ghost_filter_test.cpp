@@ -87,6 +87,51 @@ TEST(GhostFilter, FingersMovingAloneAreFollowed) {
     EXPECT_LT(worst, 0.002);
 }
 
+// Smoothing that resumes after the filter only followed the ghost (a touch, a gated hand)
+// knows the hand's speed: a moving hand is not held back, and a still, noisy one is smoothed
+// at once rather than passed through.
+TEST(GhostFilter, ResumedSmoothingKnowsTheHandsSpeed) {
+    GhostFilter moving;
+    moving.reset(hand_at(Vec3::Zero()));
+    for (int frame = 1; frame <= 90; ++frame)
+        moving.follow(hand_at(Vec3(0.5 * frame * kDt, 0, 0)), kDt, kOn);
+    const HandPose next = hand_at(Vec3(0.5 * 91 * kDt, 0, 0));
+    const HandPose out = moving.apply(next, kDt, kOn);
+    EXPECT_LT((out[Joint::Palm].position - next[Joint::Palm].position).norm(), 1e-4);
+
+    std::mt19937_64 rng(5);
+    std::normal_distribution<double> noise(0.0, 0.002);
+    const HandPose still = hand_at(Vec3::Zero());
+    auto noisy = [&] {
+        HandPose h = still;
+        for (Pose& p : h.joints) p.position += Vec3(noise(rng), noise(rng), noise(rng));
+        return h;
+    };
+    GhostFilter resting;
+    resting.reset(still);
+    for (int frame = 0; frame < 90; ++frame) resting.follow(noisy(), kDt, kOn);
+    HandPose previous = resting.apply(noisy(), kDt, kOn);
+    double moved_sq = 0.0;
+    for (int frame = 0; frame < 5; ++frame) {
+        const HandPose out = resting.apply(noisy(), kDt, kOn);
+        moved_sq +=
+            (out[Joint::IndexTip].position - previous[Joint::IndexTip].position).squaredNorm();
+        previous = out;
+    }
+    // The noise alone moves a joint sqrt(6) * 2 mm a frame.
+    EXPECT_LT(std::sqrt(moved_sq / 5), 0.5 * std::sqrt(6.0) * 0.002);
+}
+
+// Orientations pass unsmoothed: a knuckle that turns in place would otherwise trail.
+TEST(GhostFilter, OrientationsPassThrough) {
+    GhostFilter f;
+    f.reset(hand_at(Vec3::Zero(), 0.0));
+    const HandPose fist = hand_at(Vec3::Zero(), 1.0);
+    const HandPose out = f.apply(fist, kDt, kOn);
+    for (std::size_t j = 0; j < kJointCount; ++j)
+        EXPECT_EQ(out.joints[j].orientation.coeffs(), fist.joints[j].orientation.coeffs()) << j;
+}
+
 TEST(GhostFilter, ResetStartsOverAtTheGivenPose) {
     GhostFilter f;
     f.reset(hand_at(Vec3::Zero()));

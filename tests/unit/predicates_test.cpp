@@ -128,8 +128,12 @@ TEST(RunMetrics, TrackingErrorSkipsJointsInRecentContact) {
     contact = {};
     m.add_hand(0.2, HandSide::Right, ghost, phys, contact);  // released 0.2 s ago: not counted
     m.add_hand(0.3, HandSide::Right, ghost, phys, contact);  // counted: 1 of 26 joints at 10 mm
-    m.add_frame(5.0, 0.002, 1.0, false);
-    m.add_frame(7.0, 0.001, 2.0, true);
+    m.add_frame({.step_us = 5.0, .max_penetration_m = 0.002, .max_body_speed = 1.0});
+    m.add_frame({.step_us = 7.0,
+                 .max_penetration_m = 0.001,
+                 .max_body_speed = 2.0,
+                 .max_requested_speed = 25.0,
+                 .nonfinite = true});
     const MetricsSummary s = m.summary();
     const double counted = 25 * 3 + 1;  // frames 1-3 for 25 joints, frame 3 for the tip
     EXPECT_NEAR(s.tracking_error_rms_mm, std::sqrt(100.0 / counted), 1e-9);
@@ -138,6 +142,7 @@ TEST(RunMetrics, TrackingErrorSkipsJointsInRecentContact) {
     EXPECT_EQ(s.nonfinite_count, 1);
     EXPECT_EQ(s.frames, 2);
     EXPECT_DOUBLE_EQ(s.max_body_speed, 2.0);
+    EXPECT_DOUBLE_EQ(s.max_requested_speed, 25.0);
 }
 
 // A body's speed 50 ms after its last contact over the ghost palm's speed then
@@ -156,7 +161,7 @@ TEST(RunMetrics, ReleaseSpeedRatioOfTheFastestThrow) {
         cube.linear_velocity = cube_velocity;
         cube.touched_by[static_cast<int>(HandSide::Right)] = touched;
         m.add_body(t, 0, cube);
-        m.add_frame(1.0, 0.0, 0.0, false);
+        m.add_frame({.step_us = 1.0});
     };
     for (int f = 0; f <= 10; ++f) frame(f, 2.0, Vec3::Zero(), true);     // carried at 2 m/s
     for (int f = 11; f <= 20; ++f) frame(f, 2.0, Vec3(3, 0, 0), false);  // let go at 0.10 s
@@ -166,7 +171,8 @@ TEST(RunMetrics, ReleaseSpeedRatioOfTheFastestThrow) {
     EXPECT_DOUBLE_EQ(s.throw_release->time_s, 0.10);
     EXPECT_NEAR(s.throw_release->hand_speed, 2.0, 1e-9);
     EXPECT_NEAR(s.throw_release->palm_speed, 2.0, 1e-9);  // at 0.15 s
-    EXPECT_NEAR(s.throw_release->ratio(), 1.5, 1e-9);
+    ASSERT_TRUE(s.throw_release->ratio());
+    EXPECT_NEAR(*s.throw_release->ratio(), 1.5, 1e-9);
     EXPECT_EQ(s.frames_touching_bodies[static_cast<int>(HandSide::Right)], 11);
 
     RunMetrics placing;  // the same, with the palm at 0.2 m/s: a body set down, not thrown
@@ -178,7 +184,7 @@ TEST(RunMetrics, ReleaseSpeedRatioOfTheFastestThrow) {
         BodyState cube;
         cube.touched_by[static_cast<int>(HandSide::Right)] = f <= 10;
         placing.add_body(t, 0, cube);
-        placing.add_frame(1.0, 0.0, 0.0, false);
+        placing.add_frame({.step_us = 1.0});
     }
     EXPECT_FALSE(placing.summary().throw_release);
 }
