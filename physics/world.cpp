@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "bullet_convert.h"
+#include "capsule_end_contacts.h"
 #include "speed_limit.h"
 
 namespace physhand {
@@ -37,19 +38,24 @@ class HandReachDispatcher : public btCollisionDispatcher {
 
 }  // namespace
 
-// Bullet's world with the speed limit where it bounds motion: after the constraint solver
-// and before positions are integrated, so no body ever moves faster than the limit.
-class SpeedLimitedWorld : public btDiscreteDynamicsWorld {
+// Bullet's world with two additions for hands: contacts at both ends of each finger
+// capsule, and the speed limit where it bounds motion: after the constraint solver and
+// before positions are integrated, so no body ever moves faster than the limit.
+class HandWorld : public btDiscreteDynamicsWorld {
   public:
-    SpeedLimitedWorld(btDispatcher* dispatcher, btBroadphaseInterface* broadphase,
-                      btConstraintSolver* solver, btCollisionConfiguration* configuration,
-                      double max_speed)
+    HandWorld(btCollisionDispatcher* dispatcher, btBroadphaseInterface* broadphase,
+              btConstraintSolver* solver, btCollisionConfiguration* configuration, double max_speed)
         : btDiscreteDynamicsWorld(dispatcher, broadphase, solver, configuration),
+          dispatcher_(*dispatcher),
           max_speed_(max_speed) {}
     // What the limit found in the last substep.
     const SpeedCheck& last_check() const { return last_check_; }
 
   protected:
+    void performDiscreteCollisionDetection() override {
+        btDiscreteDynamicsWorld::performDiscreteCollisionDetection();
+        add_capsule_end_contacts(dispatcher_);
+    }
     void integrateTransforms(btScalar h) override {
         last_check_ = {};
         for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i) {
@@ -61,6 +67,7 @@ class SpeedLimitedWorld : public btDiscreteDynamicsWorld {
     }
 
   private:
+    btCollisionDispatcher& dispatcher_;
     double max_speed_;
     SpeedCheck last_check_;
 };
@@ -81,9 +88,8 @@ World::World(const Settings& settings)
       dispatcher_(std::make_unique<HandReachDispatcher>(configuration_.get())),
       broadphase_(std::make_unique<btDbvtBroadphase>()),
       solver_(std::make_unique<btSequentialImpulseConstraintSolver>()),
-      world_(std::make_unique<SpeedLimitedWorld>(dispatcher_.get(), broadphase_.get(),
-                                                 solver_.get(), configuration_.get(),
-                                                 settings.max_body_speed)) {
+      world_(std::make_unique<HandWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
+                                         configuration_.get(), settings.max_body_speed)) {
     world_->setGravity(to_bt(settings.gravity));
     btContactSolverInfo& info = world_->getSolverInfo();
     info.m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;

@@ -19,7 +19,7 @@ class btSequentialImpulseConstraintSolver;
 
 namespace physhand {
 
-class SpeedLimitedWorld;
+class HandWorld;
 
 // Who a Bullet object is, kept in its user indices.
 enum class BodyRole : int { Collider = 1, Hand = 2 };
@@ -94,7 +94,7 @@ class World {
     std::unique_ptr<btCollisionDispatcher> dispatcher_;
     std::unique_ptr<btBroadphaseInterface> broadphase_;
     std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
-    std::unique_ptr<SpeedLimitedWorld> world_;
+    std::unique_ptr<HandWorld> world_;
     std::map<ColliderHandle, std::unique_ptr<Entry>> colliders_;  // ordered: deterministic
     ColliderHandle next_handle_ = 1;
     int hand_bodies_ = 0;
