@@ -34,7 +34,7 @@ cp "$out"/*.csv "$out"/*.svg "$out/overhead.json" "$root/bench/"
     echo
     echo "## Stress"
     echo
-    echo "\`PHYSHAND_STRESS_SEEDS=$seeds physhand_stress_tests\`: randomised pathological tracking of both hands (README, Tests), per drive, at its own substeps; max_body_speed is the fastest any body moved, 'requested' what the drive and the contacts asked for before the 20 m/s limit. Then stiffness 1e4 and 1e6 on every drive at 1 substep against a 1 g grain, a 1000 kg anvil and a 50 m slab."
+    echo "\`PHYSHAND_STRESS_SEEDS=$seeds physhand_stress_tests\`: randomised pathological tracking of both hands (README, Tests), per drive, at its own substeps; max_body_speed is the fastest any body moved, 'requested' what the drive and the contacts asked for before the 20 m/s limit, speed_clamps every body slowed to 20 m/s or to 100 rad/s. Then stiffness 1e4 and 1e6 on every drive at 1 substep against a 1 g grain, a 1000 kg anvil and a 50 m slab."
     echo
     sed -n 's/^\(stress\|extreme\): /- /p' "$out/stress.log"
 } > "$root/BENCHMARKS.md"
