@@ -83,6 +83,31 @@ std::optional<Contact> convex_contact(const btVector3& centre, btScalar radius,
     return Contact{-found.m_normalOnBInWorld, on_collider, found.m_distance};
 }
 
+// An end's point takes the place of the manifold's nearest point, as Bullet's own insertion
+// does, unless that point is deeper and elsewhere on the capsule: the distance to a convex
+// collider along the capsule is least at an end unless the capsule crosses an edge or a
+// curved surface, whose contact it then keeps beside the ends'.
+void merge_end_contact(const btManifoldPoint& end, bool hand_first, btScalar radius,
+                       btPersistentManifold& manifold) {
+    constexpr btScalar kDeeper = 1e-5f;  // m: more than float rounding
+    const auto on_hand = [hand_first](const btManifoldPoint& p) {
+        return hand_first ? p.m_localPointA : p.m_localPointB;
+    };
+    const int nearest = manifold.getCacheEntry(end);
+    if (nearest < 0) {
+        manifold.addManifoldPoint(end);
+        return;
+    }
+    const btManifoldPoint& there = manifold.getContactPoint(nearest);
+    const bool keep = there.getDistance() < end.getDistance() - kDeeper &&
+                      (on_hand(there) - on_hand(end)).length2() > radius * radius;
+    if (keep) {
+        manifold.addManifoldPoint(end);
+    } else {
+        manifold.replaceContactPoint(end, nearest);
+    }
+}
+
 }  // namespace
 
 void add_capsule_end_contacts(btCollisionDispatcher& dispatcher) {
@@ -104,25 +129,31 @@ void add_capsule_end_contacts(btCollisionDispatcher& dispatcher) {
         const btCollisionObjectWrapper hand_wrap(nullptr, &capsule, hand, t, -1, -1);
         const btCollisionObjectWrapper other_wrap(nullptr, other_shape, other,
                                                   other->getWorldTransform(), -1, -1);
-        // In the manifold's order, as Bullet's own algorithms add points.
-        btManifoldResult result(hand_first ? &hand_wrap : &other_wrap,
-                                hand_first ? &other_wrap : &hand_wrap);
-        result.setPersistentManifold(manifold);
         const btScalar reach = manifold->getContactBreakingThreshold();
+        const btScalar radius = capsule.getRadius();
         btVector3 axis(0, 0, 0);
         axis[capsule.getUpAxis()] = capsule.getHalfHeight();
         for (const btVector3& end : {t * axis, t * -axis}) {
-            const btScalar radius = capsule.getRadius();
             const std::optional<Contact> c =
                 other_type == STATIC_PLANE_PROXYTYPE ? plane_contact(end, radius, *other)
                 : other_type == BOX_SHAPE_PROXYTYPE  ? box_contact(end, radius, *other)
                                                      : convex_contact(end, radius, *other, reach);
             if (!c) continue;
+            // Bullet builds the point (friction, restitution, local points) in a manifold of
+            // its own, in the real one's order; merge_end_contact says why not in place.
+            btPersistentManifold built(manifold->getBody0(), manifold->getBody1(), 0, reach,
+                                       manifold->getContactProcessingThreshold());
+            btManifoldResult result(hand_first ? &hand_wrap : &other_wrap,
+                                    hand_first ? &other_wrap : &hand_wrap);
+            result.setPersistentManifold(&built);
             if (hand_first) {
                 result.addContactPoint(c->normal, c->on_collider, c->distance);
             } else {
                 const btVector3 on_hand = c->on_collider + c->normal * c->distance;
                 result.addContactPoint(-c->normal, on_hand, c->distance);
+            }
+            if (built.getNumContacts() == 1) {
+                merge_end_contact(built.getContactPoint(0), hand_first, radius, *manifold);
             }
         }
     }
