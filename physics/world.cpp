@@ -8,6 +8,7 @@
 
 #include "bullet_convert.h"
 #include "capsule_end_contacts.h"
+#include "hand_reach_dispatcher.h"
 #include "speed_limit.h"
 
 namespace physhand {
@@ -23,18 +24,6 @@ constexpr btScalar kRollingFriction = 0.001f;
 BodyRole role_of(const btCollisionObject* o) {
     return static_cast<BodyRole>(o->getUserIndex());
 }
-
-class HandReachDispatcher : public btCollisionDispatcher {
-  public:
-    using btCollisionDispatcher::btCollisionDispatcher;
-    btPersistentManifold* getNewManifold(const btCollisionObject* a,
-                                         const btCollisionObject* b) override {
-        btPersistentManifold* m = btCollisionDispatcher::getNewManifold(a, b);
-        if (role_of(a) == BodyRole::Hand || role_of(b) == BodyRole::Hand)
-            m->setContactBreakingThreshold(static_cast<btScalar>(kHandContactReach));
-        return m;
-    }
-};
 
 }  // namespace
 

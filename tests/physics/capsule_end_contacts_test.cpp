@@ -9,6 +9,7 @@
 #include <tuple>
 #include <vector>
 
+#include "hand_reach_dispatcher.h"
 #include "world.h"
 
 namespace physhand {
@@ -18,18 +19,6 @@ constexpr btScalar kRadius = 0.008f;
 constexpr btScalar kLength = 0.03f;      // between the capsule's end centres
 constexpr btScalar kTop = 0.1f;          // every collider's top surface, y
 constexpr btScalar kBoxMargin = 0.001f;  // as colliders have: rounds the box's edges
-
-// Manifolds with the hand's reach, as World makes them.
-class ReachDispatcher : public btCollisionDispatcher {
-  public:
-    using btCollisionDispatcher::btCollisionDispatcher;
-    btPersistentManifold* getNewManifold(const btCollisionObject* a,
-                                         const btCollisionObject* b) override {
-        btPersistentManifold* m = btCollisionDispatcher::getNewManifold(a, b);
-        m->setContactBreakingThreshold(static_cast<btScalar>(kHandContactReach));
-        return m;
-    }
-};
 
 enum class Kind { Box, Plane, Hull };
 
@@ -96,7 +85,7 @@ class EndContacts : public ::testing::TestWithParam<std::tuple<Kind, bool>> {
     }
 
     btDefaultCollisionConfiguration configuration_;
-    ReachDispatcher dispatcher_{&configuration_};
+    HandReachDispatcher dispatcher_{&configuration_};  // as World has
     btDbvtBroadphase broadphase_;
     btCollisionWorld world_{&dispatcher_, &broadphase_, &configuration_};
     std::unique_ptr<btCollisionShape> collider_shape_;
