@@ -1,4 +1,4 @@
-#include "capsule_end_contacts.h"
+#include "hand_point_contacts.h"
 
 #include <btBulletCollisionCommon.h>
 #include <gtest/gtest.h>
@@ -9,6 +9,7 @@
 #include <tuple>
 #include <vector>
 
+#include "capsule_box_collision.h"
 #include "hand_reach_dispatcher.h"
 #include "world.h"
 
@@ -22,11 +23,13 @@ constexpr btScalar kBoxMargin = 0.001f;  // as colliders have: rounds the box's 
 
 enum class Kind { Box, Plane, Hull };
 
-// One finger capsule and one static collider whose top is the plane y = kTop (the box and
-// hull reach 0.1 m either side of x = 0), in either order in Bullet's pair.
+// One hand part (a finger capsule unless a test sets another shape) and one static
+// collider whose top is the plane y = kTop (the box and hull reach 0.1 m either side of
+// x = 0), in either order in Bullet's pair, found as World finds them.
 class EndContacts : public ::testing::TestWithParam<std::tuple<Kind, bool>> {
   protected:
     void SetUp() override {
+        register_capsule_box_collision(dispatcher_);
         switch (std::get<0>(GetParam())) {
             case Kind::Box:
                 collider_shape_ = std::make_unique<btBoxShape>(btVector3(0.1f, kTop, 0.1f));
@@ -49,7 +52,7 @@ class EndContacts : public ::testing::TestWithParam<std::tuple<Kind, bool>> {
         }
         collider_.setCollisionShape(collider_shape_.get());
         collider_.setUserIndex(static_cast<int>(BodyRole::Collider));
-        finger_.setCollisionShape(&capsule_);
+        finger_.setCollisionShape(hand_shape());
         finger_.setUserIndex(static_cast<int>(BodyRole::Hand));
         if (std::get<1>(GetParam())) {
             world_.addCollisionObject(&finger_);
@@ -59,20 +62,21 @@ class EndContacts : public ::testing::TestWithParam<std::tuple<Kind, bool>> {
             world_.addCollisionObject(&finger_);
         }
     }
+    virtual btCollisionShape* hand_shape() { return &capsule_; }
     void TearDown() override {
         world_.removeCollisionObject(&finger_);
         world_.removeCollisionObject(&collider_);
     }
 
     // Places the capsule's centre at `centre`, its axis along `axis`, and returns the
-    // distances of the contact points Bullet and then add_capsule_end_contacts found.
+    // distances of the contact points Bullet and then add_hand_point_contacts found.
     std::vector<btScalar> contacts(const btVector3& centre, const btVector3& axis) {
         finger_.setWorldTransform(
             btTransform(btQuaternion(btVector3(0, 0, 1).cross(axis.normalized()),
                                      btAcos(btVector3(0, 0, 1).dot(axis.normalized()))),
                         centre));
         world_.performDiscreteCollisionDetection();
-        add_capsule_end_contacts(dispatcher_);
+        add_hand_point_contacts(dispatcher_);
         std::vector<btScalar> d;
         for (int i = 0; i < dispatcher_.getNumManifolds(); ++i) {
             const btPersistentManifold* m = dispatcher_.getManifoldByIndexInternal(i);
@@ -120,8 +124,8 @@ TEST_P(EndContacts, AFingerLyingFlatKeepsOnePointAtEachEnd) {
     }
 }
 
-// A finger across the box's edge at 45°, its middle 2 mm over the sharp edge (which Bullet
-// rounds by the margin) and both ends clear. The middle's contact stays beside the ends'.
+// A finger across the box's edge at 45°, its middle 2 mm over the sharp edge and both ends
+// clear. The middle's contact stays beside the ends'.
 class EdgeContacts : public EndContacts {};
 
 TEST_P(EdgeContacts, AFingerAcrossAnEdgeKeepsTheEdgeContact) {
@@ -130,8 +134,45 @@ TEST_P(EdgeContacts, AFingerAcrossAnEdgeKeepsTheEdgeContact) {
     const btVector3 centre = btVector3(0.1f, kTop, 0) + out * (kRadius - over);
     const std::vector<btScalar> d = contacts(centre, btVector3(1, -1, 0));
     ASSERT_EQ(d.size(), 3u);
-    EXPECT_NEAR(d[0], kBoxMargin * (std::sqrt(2.0f) - 1) - over, 1e-5);
+    EXPECT_NEAR(d[0], -over, 1e-5);
     EXPECT_GT(d[1], 0.0);
+}
+
+// A palm-sized box coming down tilted about z, its lowest edge 1 mm above the surface.
+// Bullet finds no point between two boxes that do not overlap, and one between a box and a
+// plane or hull.
+class CornerContacts : public EndContacts {
+  protected:
+    btCollisionShape* hand_shape() override {
+        palm_.setMargin(kBoxMargin);
+        return &palm_;
+    }
+    btBoxShape palm_{btVector3(0.04f, 0.006f, 0.04f)};
+};
+
+TEST_P(CornerContacts, ATiltedPalmHasAContactAtEachOfItsFourLowestCorners) {
+    const btQuaternion tilt(btVector3(0, 0, 1), 0.1f);
+    const btVector3 half = palm_.getHalfExtentsWithMargin();
+    auto height = [&](btScalar x) {  // of the bottom corners at side x, the centre at 0
+        return quatRotate(tilt, btVector3(x * half.x(), -half.y(), 0)).y();
+    };
+    const btScalar low = std::min(height(-1), height(1));
+    const btScalar high = std::max(height(-1), height(1));
+    finger_.setWorldTransform(btTransform(tilt, btVector3(0, kTop + 0.001f - low, 0)));
+    world_.performDiscreteCollisionDetection();
+    add_hand_point_contacts(dispatcher_);
+    std::vector<btScalar> d;
+    for (int i = 0; i < dispatcher_.getNumManifolds(); ++i) {
+        const btPersistentManifold* m = dispatcher_.getManifoldByIndexInternal(i);
+        for (int p = 0; p < m->getNumContacts(); ++p)
+            d.push_back(m->getContactPoint(p).getDistance());
+    }
+    std::sort(d.begin(), d.end());
+    ASSERT_EQ(d.size(), 4u);
+    EXPECT_NEAR(d[0], 0.001, 1e-5);
+    EXPECT_NEAR(d[1], 0.001, 1e-5);
+    EXPECT_NEAR(d[2], 0.001 + high - low, 1e-5);
+    EXPECT_NEAR(d[3], 0.001 + high - low, 1e-5);
 }
 
 std::string name(const ::testing::TestParamInfo<std::tuple<Kind, bool>>& info) {
@@ -141,6 +182,10 @@ std::string name(const ::testing::TestParamInfo<std::tuple<Kind, bool>>& info) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Colliders, EndContacts,
+                         ::testing::Combine(::testing::Values(Kind::Box, Kind::Plane, Kind::Hull),
+                                            ::testing::Bool()),
+                         name);
+INSTANTIATE_TEST_SUITE_P(Colliders, CornerContacts,
                          ::testing::Combine(::testing::Values(Kind::Box, Kind::Plane, Kind::Hull),
                                             ::testing::Bool()),
                          name);

@@ -1,0 +1,145 @@
+#include "hand_point_contacts.h"
+
+#include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
+#include <btBulletCollisionCommon.h>
+
+#include <algorithm>
+#include <array>
+#include <optional>
+#include <utility>
+
+#include "ball_contact.h"
+#include "world.h"
+
+namespace physhand {
+
+namespace {
+
+bool is_hand(const btCollisionObject& o) {
+    return static_cast<BodyRole>(o.getUserIndex()) == BodyRole::Hand;
+}
+
+// A ball at which a hand part meets a surface first: an end of a capsule, or a corner of a
+// box (a point: sharp, as Bullet's box-box and box-plane contacts take it).
+struct Ball {
+    btVector3 centre;
+    btScalar radius;
+};
+
+// The part's balls in world space; none for a part of another shape.
+int balls_of(const btCollisionObject& part, std::array<Ball, 8>& out) {
+    const btCollisionShape& shape = *part.getCollisionShape();
+    const btTransform& t = part.getWorldTransform();
+    if (shape.getShapeType() == CAPSULE_SHAPE_PROXYTYPE) {
+        const auto& capsule = static_cast<const btCapsuleShape&>(shape);
+        btVector3 axis(0, 0, 0);
+        axis[capsule.getUpAxis()] = capsule.getHalfHeight();
+        out[0] = {t * axis, capsule.getRadius()};
+        out[1] = {t * -axis, capsule.getRadius()};
+        return 2;
+    }
+    if (shape.getShapeType() == BOX_SHAPE_PROXYTYPE) {
+        const auto& box = static_cast<const btBoxShape&>(shape);
+        const btVector3 half = box.getHalfExtentsWithMargin();
+        for (int i = 0; i < 8; ++i) {
+            const btVector3 corner(i & 1 ? half.x() : -half.x(), i & 2 ? half.y() : -half.y(),
+                                   i & 4 ? half.z() : -half.z());
+            out[static_cast<std::size_t>(i)] = {t * corner, 0};
+        }
+        return 8;
+    }
+    return 0;
+}
+
+// A ball's point takes the place of the manifold's nearest point, as Bullet's own insertion
+// does, unless that point is deeper and elsewhere on the part (further than the ball's
+// radius): the distance to a convex collider is least at a capsule's end or a box's corner
+// unless the part crosses an edge or a curved surface, whose contact it then keeps beside
+// the balls'.
+void merge_ball_contact(const btManifoldPoint& end, bool hand_first, btScalar radius,
+                        btPersistentManifold& manifold) {
+    const auto on_hand = [hand_first](const btManifoldPoint& p) {
+        return hand_first ? p.m_localPointA : p.m_localPointB;
+    };
+    const int nearest = manifold.getCacheEntry(end);
+    if (nearest < 0) {
+        manifold.addManifoldPoint(end);
+        return;
+    }
+    const btManifoldPoint& there = manifold.getContactPoint(nearest);
+    const bool keep = there.getDistance() < end.getDistance() - kDeeper &&
+                      (on_hand(there) - on_hand(end)).length2() > radius * radius;
+    if (keep) {
+        manifold.addManifoldPoint(end);
+    } else {
+        manifold.replaceContactPoint(end, nearest);
+    }
+}
+
+}  // namespace
+
+void add_hand_point_contacts(btCollisionDispatcher& dispatcher) {
+    // A manifold holds four points: a box keeps its four corners nearest the collider.
+    constexpr std::size_t kCornersKept = 4;
+    for (int i = 0; i < dispatcher.getNumManifolds(); ++i) {
+        btPersistentManifold* manifold = dispatcher.getManifoldByIndexInternal(i);
+        const btCollisionObject* hand = manifold->getBody0();
+        const btCollisionObject* other = manifold->getBody1();
+        const bool hand_first = is_hand(*hand);
+        if (!hand_first) std::swap(hand, other);
+        if (!is_hand(*hand)) continue;
+        const btCollisionShape* other_shape = other->getCollisionShape();
+        const int other_type = other_shape->getShapeType();
+        if (other_type != STATIC_PLANE_PROXYTYPE && !other_shape->isConvex()) continue;
+        const int hand_type = hand->getCollisionShape()->getShapeType();
+        // Bullet finds a point of any convex pair within reach but two boxes, which it finds
+        // only overlapping: nothing of such a part within reach, none of its balls is.
+        const bool two_boxes =
+            hand_type == BOX_SHAPE_PROXYTYPE && other_type == BOX_SHAPE_PROXYTYPE;
+        if (manifold->getNumContacts() == 0 && !two_boxes) continue;
+
+        std::array<Ball, 8> balls;
+        const int count = balls_of(*hand, balls);
+        const btScalar reach = manifold->getContactBreakingThreshold();
+        std::array<std::pair<BallContact, btScalar>, 8> found;  // with the ball's radius
+        std::size_t n = 0;
+        for (int b = 0; b < count; ++b) {
+            const Ball& ball = balls[static_cast<std::size_t>(b)];
+            const std::optional<BallContact> c =
+                ball_contact(ball.centre, ball.radius, *other, reach);
+            if (c && c->distance < reach) found[n++] = {*c, ball.radius};
+        }
+        if (hand_type == BOX_SHAPE_PROXYTYPE && n > kCornersKept) {
+            std::partial_sort(
+                found.begin(), found.begin() + kCornersKept, found.begin() + n,
+                [](const auto& a, const auto& b) { return a.first.distance < b.first.distance; });
+            n = kCornersKept;
+        }
+
+        const btCollisionObjectWrapper hand_wrap(nullptr, hand->getCollisionShape(), hand,
+                                                 hand->getWorldTransform(), -1, -1);
+        const btCollisionObjectWrapper other_wrap(nullptr, other_shape, other,
+                                                  other->getWorldTransform(), -1, -1);
+        for (std::size_t k = 0; k < n; ++k) {
+            const auto& [c, radius] = found[k];
+            // Bullet builds the point (friction, restitution, local points) in a manifold of
+            // its own, in the real one's order; merge_ball_contact says why not in place.
+            btPersistentManifold built(manifold->getBody0(), manifold->getBody1(), 0, reach,
+                                       manifold->getContactProcessingThreshold());
+            btManifoldResult result(hand_first ? &hand_wrap : &other_wrap,
+                                    hand_first ? &other_wrap : &hand_wrap);
+            result.setPersistentManifold(&built);
+            if (hand_first) {
+                result.addContactPoint(c.normal, c.on_collider, c.distance);
+            } else {
+                const btVector3 on_hand = c.on_collider + c.normal * c.distance;
+                result.addContactPoint(-c.normal, on_hand, c.distance);
+            }
+            if (built.getNumContacts() == 1) {
+                merge_ball_contact(built.getContactPoint(0), hand_first, radius, *manifold);
+            }
+        }
+    }
+}
+
+}  // namespace physhand
