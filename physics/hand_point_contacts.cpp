@@ -56,23 +56,23 @@ int balls_of(const btCollisionObject& part, std::array<Ball, 8>& out) {
 // radius): the distance to a convex collider is least at a capsule's end or a box's corner
 // unless the part crosses an edge or a curved surface, whose contact it then keeps beside
 // the balls'.
-void merge_ball_contact(const btManifoldPoint& end, bool hand_first, btScalar radius,
+void merge_ball_contact(const btManifoldPoint& point, bool hand_first, btScalar radius,
                         btPersistentManifold& manifold) {
     const auto on_hand = [hand_first](const btManifoldPoint& p) {
         return hand_first ? p.m_localPointA : p.m_localPointB;
     };
-    const int nearest = manifold.getCacheEntry(end);
+    const int nearest = manifold.getCacheEntry(point);
     if (nearest < 0) {
-        manifold.addManifoldPoint(end);
+        manifold.addManifoldPoint(point);
         return;
     }
     const btManifoldPoint& there = manifold.getContactPoint(nearest);
-    const bool keep = there.getDistance() < end.getDistance() - kDeeper &&
-                      (on_hand(there) - on_hand(end)).length2() > radius * radius;
+    const bool keep = there.getDistance() < point.getDistance() - kDeeper &&
+                      (on_hand(there) - on_hand(point)).length2() > radius * radius;
     if (keep) {
-        manifold.addManifoldPoint(end);
+        manifold.addManifoldPoint(point);
     } else {
-        manifold.replaceContactPoint(end, nearest);
+        manifold.replaceContactPoint(point, nearest);
     }
 }
 
