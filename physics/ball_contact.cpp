@@ -43,6 +43,13 @@ std::optional<BallContact> convex_contact(const btVector3& centre, btScalar radi
 
 }  // namespace
 
+std::pair<btVector3, btVector3> capsule_ends(const btCapsuleShape& capsule,
+                                             const btTransform& pose) {
+    btVector3 axis(0, 0, 0);
+    axis[capsule.getUpAxis()] = capsule.getHalfHeight();
+    return {pose * axis, pose * -axis};
+}
+
 BallContact ball_box_contact(const btVector3& centre, btScalar radius, const btTransform& box,
                              const btVector3& half) {
     const btVector3 local = box.invXform(centre);

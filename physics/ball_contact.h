@@ -3,7 +3,9 @@
 #include <LinearMath/btTransform.h>
 
 #include <optional>
+#include <utility>
 
+class btCapsuleShape;
 class btCollisionObject;
 
 namespace physhand {
@@ -18,6 +20,11 @@ struct BallContact {
 
 // One contact is deeper than another beyond float rounding by more than this (m).
 inline constexpr btScalar kDeeper = 1e-5f;
+
+// The centres of a capsule's end balls, posed by `pose`: the capsule is the balls of its
+// radius along the segment between them.
+std::pair<btVector3, btVector3> capsule_ends(const btCapsuleShape& capsule,
+                                             const btTransform& pose);
 
 // A ball against a box of half extents `half` posed by `box` (sharp edges, as the scene
 // describes it), exactly.

@@ -82,14 +82,12 @@ class CapsuleBoxAlgorithm : public btActivatingCollisionAlgorithm {
         const auto& capsule =
             static_cast<const btCapsuleShape&>(*capsule_wrap->getCollisionShape());
         const auto& box = static_cast<const btBoxShape&>(*box_wrap->getCollisionShape());
-        const btTransform& t = capsule_wrap->getWorldTransform();
-        btVector3 axis(0, 0, 0);
-        axis[capsule.getUpAxis()] = capsule.getHalfHeight();
+        const auto [a, b] = capsule_ends(capsule, capsule_wrap->getWorldTransform());
 
         result->setPersistentManifold(manifold_);
         const BallContact c =
-            segment_box_contact(t * axis, t * -axis, capsule.getRadius(),
-                                box_wrap->getWorldTransform(), box.getHalfExtentsWithMargin());
+            segment_box_contact(a, b, capsule.getRadius(), box_wrap->getWorldTransform(),
+                                box.getHalfExtentsWithMargin());
         // The manifold is (capsule, box): Bullet takes the point on the box and its normal.
         result->addContactPoint(c.normal, c.on_collider, c.distance);
         if (manifold_->getNumContacts() > 0) result->refreshContactPoints();

@@ -32,10 +32,9 @@ int balls_of(const btCollisionObject& part, std::array<Ball, 8>& out) {
     const btTransform& t = part.getWorldTransform();
     if (shape.getShapeType() == CAPSULE_SHAPE_PROXYTYPE) {
         const auto& capsule = static_cast<const btCapsuleShape&>(shape);
-        btVector3 axis(0, 0, 0);
-        axis[capsule.getUpAxis()] = capsule.getHalfHeight();
-        out[0] = {t * axis, capsule.getRadius()};
-        out[1] = {t * -axis, capsule.getRadius()};
+        const auto [a, b] = capsule_ends(capsule, t);
+        out[0] = {a, capsule.getRadius()};
+        out[1] = {b, capsule.getRadius()};
         return 2;
     }
     if (shape.getShapeType() == BOX_SHAPE_PROXYTYPE) {
