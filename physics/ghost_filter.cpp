@@ -24,23 +24,27 @@ void GhostFilter::reset(const HandPose& ghost) {
 double GhostFilter::estimate_speed(const HandPose& ghost, double dt,
                                    const GhostSmoothing& smoothing) {
     const double a_velocity = blend(smoothing.derivative_cutoff_hz, dt);
-    Vec3 mean = Vec3::Zero();
     for (std::size_t j = 0; j < kJointCount; ++j) {
         const Vec3 raw = (ghost.joints[j].position - state_.joints[j].position) / dt;
         velocity_[j] += a_velocity * (raw - velocity_[j]);
-        mean += velocity_[j];
     }
-    return mean.norm() / kJointCount;
+    return hand_velocity().norm();
+}
+
+Vec3 GhostFilter::hand_velocity() const {
+    Vec3 mean = Vec3::Zero();
+    for (const Vec3& v : velocity_) mean += v;
+    return mean / kJointCount;
 }
 
 void GhostFilter::follow(const HandPose& ghost, double dt, const GhostSmoothing& smoothing) {
-    if (smoothing.enabled() && dt > 0.0) estimate_speed(ghost, dt, smoothing);
+    if (dt > 0.0) estimate_speed(ghost, dt, smoothing);
     state_ = ghost;
 }
 
 HandPose GhostFilter::apply(const HandPose& ghost, double dt, const GhostSmoothing& smoothing) {
     if (!smoothing.enabled() || !(dt > 0.0)) {
-        reset(ghost);
+        follow(ghost, dt, smoothing);
         return ghost;
     }
     const double hand_speed = estimate_speed(ghost, dt, smoothing);

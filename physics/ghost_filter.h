@@ -33,6 +33,9 @@ class GhostFilter {
     // The smoothed ghost after a sample `dt` after the last; unchanged when the smoothing is
     // off.
     HandPose apply(const HandPose& ghost, double dt, const GhostSmoothing& smoothing);
+    // The hand's velocity, the mean of its joints' estimates (estimated whether or not the
+    // smoothing is on: it carries a hand through a tracking loss).
+    Vec3 hand_velocity() const;
 
   private:
     // Updates the speed estimates with a sample `dt` after the last; the hand's speed.

@@ -122,13 +122,6 @@ HandPose pose_right_hand_local(const HandArticulation& a, double scale) {
     return hand;
 }
 
-// Reflection through the wrist's YZ plane, keeping each frame right-handed.
-Pose mirror(const Pose& p) {
-    const Quat& q = p.orientation;
-    return {Vec3(-p.position.x(), p.position.y(), p.position.z()),
-            Quat(q.w(), q.x(), -q.y(), -q.z())};
-}
-
 }  // namespace
 
 std::string_view hand_side_name(HandSide side) {
@@ -180,7 +173,7 @@ HandPose pose_hand(HandSide side, const Pose& wrist, const HandArticulation& art
                    double scale) {
     HandPose hand = pose_right_hand_local(articulation, scale);
     for (Pose& joint : hand.joints) {
-        const Pose local = side == HandSide::Left ? mirror(joint) : joint;
+        const Pose local = side == HandSide::Left ? mirror_x(joint) : joint;
         joint = wrist * local;
         joint.orientation.normalize();
     }

@@ -32,6 +32,14 @@ inline bool is_finite(const Pose& p) {
     return is_finite(p.position) && is_finite(p.orientation);
 }
 
+// Reflection through the YZ plane (x -> -x), keeping each frame right-handed: a right hand's
+// joint frames become the left hand's (XR_EXT_hand_tracking gives both the same axes).
+inline Pose mirror_x(const Pose& p) {
+    const Quat& q = p.orientation;
+    return {Vec3(-p.position.x(), p.position.y(), p.position.z()),
+            Quat(q.w(), q.x(), -q.y(), -q.z())};
+}
+
 // Linear position, shortest-path slerp orientation.
 inline Pose interpolate(const Pose& a, const Pose& b, double s) {
     return {a.position + (b.position - a.position) * s, a.orientation.slerp(s, b.orientation)};

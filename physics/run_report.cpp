@@ -64,6 +64,8 @@ nlohmann::json to_json(const RunResult& r) {
         {"nonfinite_count", m.nonfinite_count},
         {"rejected_samples", r.guards.rejected_samples},
         {"reseats", r.guards.reseats},
+        {"dropouts", r.guards.dropouts},
+        {"reacquisitions", r.guards.reacquisitions},
         {"speed_clamps", r.guards.speed_clamps},
         {"bodies", bodies},
     };

@@ -11,6 +11,7 @@
 #include "collider_shape.h"
 #include "ghost_filter.h"
 #include "physical_hand.h"
+#include "tracking_gap.h"
 #include "world.h"
 
 namespace physhand {
@@ -67,6 +68,9 @@ struct Simulation::HandSlot {
     HandPose target;                     // what the drive follows: the ghost, smoothed
     HandPose previous_target;            // target at the previous step
     GhostFilter filter;
+    TrackingGap gap;
+    HandPose target_at_loss;  // the target when tracking was last lost, and its velocity
+    Vec3 velocity_at_loss = Vec3::Zero();
     bool tracked = false;  // this step's sample was valid
     bool have_ghost = false;
     bool simulated = false;
@@ -168,12 +172,14 @@ void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input, double 
 
     const double frame_dt = 1.0 / settings_.frame_rate_hz;
     if (valid) {
+        // A hand coming back from a loss is compared with where it was predicted to be.
+        const bool was_lost = slot.have_ghost && !slot.tracked && slot.simulated;
+        const HandPose& last = was_lost ? slot.target : slot.ghost;
         // A jump no hand can make: start over from the new place rather than fling the
         // physical hand (and whatever it holds) across the room.
         const double jump =
-            slot.have_ghost
-                ? (sample[Joint::Wrist].position - slot.ghost[Joint::Wrist].position).norm()
-                : 0.0;
+            slot.have_ghost ? (sample[Joint::Wrist].position - last[Joint::Wrist].position).norm()
+                            : 0.0;
         const bool lost_hand =
             slot.simulated &&
             (slot.state.joints[Joint::Wrist].position - sample[Joint::Wrist].position).norm() >
@@ -184,17 +190,27 @@ void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input, double 
         slot.previous_ghost = continues ? slot.ghost : sample;
         slot.ghost = sample;
         slot.previous_target = continues ? slot.target : sample;
-        // Only a simulated hand is smoothed (a gated one is the ghost itself), and not while it
-        // holds or presses something: how hard it grips is how far the ghost reaches into the
-        // object, which smoothing would delay.
         if (!continues) {
             slot.filter.reset(sample);
+            slot.gap.reset();
             slot.target = sample;
-        } else if (slot.simulated && !touching) {
-            slot.target = slot.filter.apply(sample, step_dt, settings_.drive.smoothing);
         } else {
-            slot.filter.follow(sample, step_dt, settings_.drive.smoothing);
-            slot.target = sample;
+            // Only a simulated hand is smoothed (a gated one is the ghost itself), and not
+            // while it holds or presses something: how hard it grips is how far the ghost
+            // reaches into the object, which smoothing would delay.
+            // Samples are one step apart, or a whole loss apart after one.
+            const double sample_dt = was_lost ? time_s_ - slot.last_tracked_time : step_dt;
+            HandPose followed = sample;
+            if (slot.simulated && !touching) {
+                followed = slot.filter.apply(sample, sample_dt, settings_.drive.smoothing);
+            } else {
+                slot.filter.follow(sample, sample_dt, settings_.drive.smoothing);
+            }
+            if (was_lost) {
+                slot.gap.reacquire(slot.target, followed);
+                ++guards_.reacquisitions;
+            }
+            slot.target = slot.gap.correct(followed, step_dt);
         }
         slot.have_ghost = true;
         slot.tracked = true;
@@ -205,8 +221,12 @@ void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input, double 
             slot.body->set_contact_response(false);
         }
     } else {
+        if (slot.tracked) {
+            ++guards_.dropouts;
+            slot.target_at_loss = slot.target;
+            slot.velocity_at_loss = slot.filter.hand_velocity();
+        }
         slot.tracked = false;
-        // Hold still at the last valid pose.
         slot.previous_ghost = slot.ghost;
         slot.previous_target = slot.target;
         const bool in_grace = time_s_ - slot.last_tracked_time <= settings_.dropout_grace_s;
@@ -215,6 +235,9 @@ void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input, double 
             slot.simulated = false;
             return;
         }
+        // Within the grace period the hand goes on as it was moving, grip unchanged.
+        slot.target = TrackingGap::predict(slot.target_at_loss, slot.velocity_at_loss,
+                                           time_s_ - slot.last_tracked_time);
     }
 
     Vec3 lo, hi;

@@ -21,7 +21,7 @@ struct SimulationSettings {
     bool gating = true;             // skip a hand with no collider within reach
     bool sleeping = true;           // dynamic colliders at rest stop being simulated
     double gate_reach = 0.05;       // m between hand and collider bounds that wakes a hand
-    double dropout_grace_s = 0.5;   // a lost hand holds still this long before it lets go
+    double dropout_grace_s = 0.5;   // a lost hand carries on this long before it lets go
     double reseat_distance = 0.15;  // m of wrist error beyond which the hand is re-seated
     double max_step_s = 0.1;        // time beyond this per call is dropped, not simulated
 };
@@ -50,7 +50,9 @@ struct PhysicalHandState {
 struct GuardCounters {
     std::uint64_t rejected_samples = 0;  // NaN/Inf, zero quaternion, absurd jump
     std::uint64_t reseats = 0;
-    std::uint64_t speed_clamps = 0;  // body-substeps the speed limit slowed down
+    std::uint64_t dropouts = 0;        // a tracked hand's samples stopped
+    std::uint64_t reacquisitions = 0;  // a lost, simulated hand's ghost came back within grace
+    std::uint64_t speed_clamps = 0;    // body-substeps the speed limit slowed down
 };
 
 struct ContactInfo {

@@ -2,7 +2,8 @@
 # Regenerates BENCHMARKS.md and bench/ (CSV + one SVG per scene): every drive over
 # 1..16 substeps on the measurement scenes, scaling with the number of colliders, the
 # layer's overhead per call (bench/overhead.json), and the stress figures of every drive
-# over STRESS_SEEDS (default 1-100) of pathological tracking and the extreme parameters.
+# over STRESS_SEEDS (default 1-100) of pathological tracking and the extreme parameters, and
+# the robustness benchmark (variants of the sample tasks, SEEDS seeds each, default 3).
 # Takes several minutes; not part of the tests.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -11,6 +12,7 @@ build=$("$root/scripts/build.sh" | tail -n 1)
 out=$(mktemp -d)
 "$build/tests/physhand-sweep" --out "$out" --repeat "${REPEAT:-3}"
 "$build/tests/physhand-scaling" --out "$out" --repeat "${REPEAT:-3}"
+"$build/tests/physhand-robustness" --out "$out" --repeat "${SEEDS:-3}" >/dev/null
 "$build/tests/physhand-overhead" --benchmark_repetitions="${REPEAT:-3}" \
     --benchmark_out="$out/overhead.json" --benchmark_out_format=json --summary "$out/overhead.md"
 seeds=${STRESS_SEEDS:-1-100}
@@ -25,6 +27,12 @@ cp "$out"/*.csv "$out"/*.svg "$out/overhead.json" "$root/bench/"
     echo "Measured $(date -u +%Y-%m-%d) on $(nproc) cores ($(lscpu | sed -n 's/^Model name: *//p' | head -1)), \`REPEAT=${REPEAT:-3} scripts/benchmark.sh\`."
     echo
     cat "$out/sweep.md" "$out/scaling.md"
+    echo
+    echo "## Robustness"
+    echo
+    cat "$root/bench/robustness-intro.md"
+    echo
+    cat "$out/robustness.md"
     echo
     echo "## Overhead through the layer"
     echo

@@ -1,0 +1,174 @@
+#include "scene_variants.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <random>
+#include <utility>
+
+namespace physhand {
+
+namespace {
+
+constexpr double kDropoutLength = 0.3;  // s: the longest loss optical tracking has every session
+
+std::string printed(const char* pattern, double value) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, pattern, value);
+    return buffer;
+}
+
+// The time span of a hand's script, first to last sample.
+std::pair<double, double> script_span(const HandScript& script) {
+    if (!script.keyframes.empty()) return {script.keyframes.front().t, script.keyframes.back().t};
+    if (!script.recorded.empty()) return {script.recorded.front().t, script.recorded.back().t};
+    return {0.0, 0.0};
+}
+
+template <typename F>
+void for_each_time(Scene& scene, F&& scale) {
+    for (auto& hand : scene.hands) {
+        if (!hand) continue;
+        for (Keyframe& k : hand->keyframes) k.t = scale(k.t);
+        for (RecordedSample& s : hand->recorded) s.t = scale(s.t);
+    }
+    for (Collider& c : scene.colliders) {
+        for (TimedPose& p : c.path) p.t = scale(p.t);
+    }
+    for (Dropout& d : scene.tracking.dropouts) {
+        d.from_s = scale(d.from_s);
+        d.to_s = scale(d.to_s);
+    }
+    for (Predicate& p : scene.success) {
+        std::visit(
+            [&](auto& pred) {
+                if constexpr (requires { pred.from_s; }) {
+                    pred.from_s = scale(pred.from_s);
+                    pred.to_s = scale(pred.to_s);
+                } else {
+                    if (pred.at) pred.at = scale(*pred.at);
+                }
+            },
+            p);
+    }
+}
+
+Vec3 mirror_point(const Vec3& p) {
+    return Vec3(-p.x(), p.y(), p.z());
+}
+
+void mirror_shape(Shape& shape) {
+    for (Vec3& v : shape.vertices) v = mirror_point(v);
+    // A reflection turns every triangle inside out: swap two corners to keep it facing out.
+    for (auto& tri : shape.indices) std::swap(tri[1], tri[2]);
+    shape.normal = mirror_point(shape.normal);
+}
+
+}  // namespace
+
+Scene mirrored(const Scene& input) {
+    Scene scene = input;
+    scene.gravity = mirror_point(scene.gravity);
+    for (Collider& c : scene.colliders) {
+        // Shapes are symmetric about their own axes except hulls and meshes, whose vertices
+        // are reflected in the collider's frame; the frame itself is reflected as a pose.
+        c.pose = mirror_x(c.pose);
+        for (TimedPose& p : c.path) p.pose = mirror_x(p.pose);
+        mirror_shape(c.shape);
+    }
+    std::swap(scene.hands[0], scene.hands[1]);
+    for (auto& hand : scene.hands) {
+        if (!hand) continue;
+        for (Keyframe& k : hand->keyframes) k.wrist = mirror_x(k.wrist);
+        for (RecordedSample& s : hand->recorded) {
+            for (Pose& j : s.hand.joints) j = mirror_x(j);
+        }
+    }
+    for (Dropout& d : scene.tracking.dropouts)
+        d.hand = d.hand == HandSide::Left ? HandSide::Right : HandSide::Left;
+    for (Predicate& p : scene.success) {
+        if (auto* inside = std::get_if<InsidePredicate>(&p))
+            inside->center = mirror_point(inside->center);
+    }
+    return scene;
+}
+
+Scene sped_up(const Scene& input, double speed) {
+    Scene scene = input;
+    for_each_time(scene, [speed](double t) { return t / speed; });
+    scene.duration_s = std::max(input.duration_s, input.duration_s / speed);
+    return scene;
+}
+
+Scene squeezed(const Scene& input, double curl) {
+    Scene scene = input;
+    for (auto& hand : scene.hands) {
+        if (!hand || hand->keyframes.empty()) continue;
+        auto& keys = hand->keyframes;
+        const auto& final_curl = keys.back().articulation.curl;
+        std::size_t first = keys.size() - 1;
+        while (first > 0 && keys[first - 1].articulation.curl == final_curl) --first;
+        for (std::size_t k = first; k < keys.size(); ++k) {
+            for (std::size_t finger = 1; finger < kFingerCount; ++finger) {
+                double& c = keys[k].articulation.curl[finger];
+                c = std::max(c, curl);
+            }
+        }
+    }
+    scene.name = input.name + "/squeeze/" + printed("%g", curl);
+    return scene;
+}
+
+std::vector<SceneVariant> scene_variants(const Scene& base, const VariantOptions& options) {
+    std::vector<SceneVariant> out;
+    auto add = [&](std::string family, std::string name, Scene scene) {
+        scene.name = base.name + "/" + family + "/" + name;
+        out.push_back({std::move(family), std::move(name), std::move(scene)});
+    };
+
+    for (double factor : {0.3, 3.0}) {
+        Scene s = base;
+        for (Collider& c : s.colliders) {
+            if (c.motion == Motion::Dynamic) c.mass *= factor;
+        }
+        add("mass", printed("x%g", factor), std::move(s));
+    }
+    {
+        Scene s = base;
+        for (Collider& c : s.colliders) {
+            if (c.motion == Motion::Dynamic) c.friction = 0.5;
+        }
+        add("friction", "0.5", std::move(s));
+    }
+    for (double speed : {0.7, 1.3}) add("speed", printed("x%g", speed), sped_up(base, speed));
+    for (int seed = 1; seed <= options.seeds; ++seed) {
+        for (double rate : {30.0, 60.0}) {
+            Scene s = base;
+            s.tracking.rate_hz = rate;
+            s.tracking.noise_mm = 2.0;
+            s.tracking.seed = static_cast<std::uint64_t>(seed);
+            add("tracking", printed("%ghz_2mm_seed", rate) + std::to_string(seed), std::move(s));
+        }
+        Scene noisy = base;
+        noisy.tracking.noise_mm = 3.0;
+        noisy.tracking.seed = static_cast<std::uint64_t>(seed);
+        add("noise", "3mm_seed" + std::to_string(seed), std::move(noisy));
+
+        std::mt19937_64 rng(static_cast<std::uint64_t>(seed) * 7919u);
+        Scene dropped = base;
+        std::string when;
+        for (HandSide side : kHandSides) {
+            const auto& hand = base.hand(side);
+            if (!hand) continue;
+            const auto [from, to] = script_span(*hand);
+            const double u = static_cast<double>(rng() >> 11) * 0x1.0p-53;
+            const double start = from + u * std::max(0.0, to - from - kDropoutLength);
+            dropped.tracking.dropouts.push_back({side, start, start + kDropoutLength});
+            when += (when.empty() ? "" : "+") + printed("%.2fs", start);
+        }
+        add("dropout", "300ms_at_" + when, std::move(dropped));
+    }
+    add("mirror", "left", mirrored(base));
+    return out;
+}
+
+}  // namespace physhand
