@@ -206,10 +206,10 @@ void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input, double 
             } else {
                 slot.filter.follow(sample, sample_dt, settings_.drive.smoothing);
             }
-            if (was_lost) {
-                slot.gap.reacquire(slot.target, followed);
-                ++guards_.reacquisitions;
-            }
+            if (was_lost) ++guards_.reacquisitions;
+            // A hand holding or pressing something is eased onto its returning ghost, so what
+            // it holds comes along; a free hand goes straight to it.
+            if (was_lost && touching) slot.gap.reacquire(slot.target, followed);
             slot.target = slot.gap.correct(followed, step_dt);
         }
         slot.have_ghost = true;
