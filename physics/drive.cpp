@@ -72,11 +72,12 @@ Vec3 drive_force(const DriveSettings& drive, double mass, const LinearState& bod
 
 Vec3 drive_torque(const DriveSettings& drive, double mass, const Eigen::Matrix3d& inertia_world,
                   const Quat& orientation, const Vec3& angular_velocity, const Quat& target,
-                  const Vec3& target_angular_velocity, double h) {
+                  const Vec3& target_angular_velocity, double h, bool resting) {
     // Like p - p_g: minus the rotation still to go.
     const Vec3 error = -rotation_between(orientation, target);
-    const double k = drive.stiffness / mass;
-    const double d = drive.damping / mass;
+    const double scale = resting ? kRestingOrientationStiffness : 1.0;
+    const double k = scale * drive.stiffness / mass;
+    const double d = std::sqrt(scale) * drive.damping / mass;
     Vec3 acceleration;
     if (drive.law == DriveLaw::Explicit) {
         acceleration = -k * error - d * (angular_velocity - target_angular_velocity);

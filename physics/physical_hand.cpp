@@ -47,6 +47,9 @@ struct PhysicalHand::Body {
     std::unique_ptr<btCollisionShape> shape;
     std::unique_ptr<btRigidBody> rigid;
     double last_force = 0.0;
+    // In the last substep: touched a static or kinematic collider, or a dynamic one.
+    bool touching_fixed = false;
+    bool touching_movable = false;
 };
 
 PhysicalHand::PhysicalHand(HandSide side, const DriveSettings& drive, const HandPose& source)
@@ -178,6 +181,7 @@ void PhysicalHand::seat(const HandPose& target, const HandPose& previous_target,
                 : to_bt(angular_velocity_between(before.orientation, now.orientation, frame_dt)));
         r.clearForces();
         b->last_force = 0.0;
+        b->touching_fixed = b->touching_movable = false;
     }
 }
 
@@ -207,10 +211,20 @@ void PhysicalHand::drive(const HandPose& goal_pose, const HandPose& previous_tar
             const Vec3 torque = drive_torque(
                 drive_, b->mass, inertia, from_bt(r.getOrientation()),
                 from_bt(r.getAngularVelocity()), goal.orientation,
-                angular_velocity_between(before.orientation, now.orientation, frame_dt), h);
+                angular_velocity_between(before.orientation, now.orientation, frame_dt), h,
+                b->touching_fixed && !b->touching_movable);
             r.applyTorque(to_bt(torque));
         }
     }
+}
+
+void PhysicalHand::clear_touches() {
+    for (auto& b : bodies_) b->touching_fixed = b->touching_movable = false;
+}
+
+void PhysicalHand::note_touch(int body, bool movable) {
+    Body& b = *bodies_[static_cast<std::size_t>(body)];
+    (movable ? b.touching_movable : b.touching_fixed) = true;
 }
 
 void PhysicalHand::set_contact_response(bool enabled) {

@@ -38,6 +38,10 @@ class PhysicalHand {
     // the substep), `previous_target`/`target` giving the target's velocity over the frame.
     void drive(const HandPose& goal, const HandPose& previous_target, const HandPose& target,
                double frame_dt, double h);
+    // What bodies touched in the last substep: the drive softens the turning of a body that
+    // rests on what it cannot move.
+    void clear_touches();
+    void note_touch(int body, bool movable);
     // While re-seating, bodies pass through colliders until they are clear of them.
     void set_contact_response(bool enabled);
     bool contact_response() const { return contact_response_; }

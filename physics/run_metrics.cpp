@@ -12,6 +12,8 @@ constexpr double kContactMemory_s = 0.25;
 constexpr double kReleaseDelay_s = 0.05;
 // Frame times are whole nanoseconds: "at or after" must not miss a frame by rounding.
 constexpr double kTimeTolerance_s = 1e-6;
+// rest_jitter_mm counts a joint in the frames in which its ghost moved less than this.
+constexpr double kGhostAtRest_m = 1e-4;
 }  // namespace
 
 double quantile(std::vector<double> values, double q) {
@@ -39,6 +41,14 @@ void RunMetrics::add_hand(double t, HandSide side, const HandPose& ghost, const 
         h.palm_speed.reset();
     }
     for (std::size_t j = 0; j < kJointCount; ++j) {
+        if (h.have_previous &&
+            (ghost.joints[j].position - h.previous_ghost.joints[j].position).norm() <
+                kGhostAtRest_m) {
+            rest_jitter_sq_ +=
+                (physical.joints[j].position - h.previous_physical.joints[j].position)
+                    .squaredNorm();
+            ++rest_jitter_n_;
+        }
         if (in_contact[j]) h.last_contact_t[j] = t;
         if (t - h.last_contact_t[j] <= kContactMemory_s) continue;
         errors_m_.push_back((physical.joints[j].position - ghost.joints[j].position).norm());
@@ -103,6 +113,8 @@ MetricsSummary RunMetrics::summary() const {
         s.jitter_mm = std::sqrt(jitter_sq_ / static_cast<double>(jitter_n_)) * 1e3;
         s.ghost_jitter_mm = std::sqrt(ghost_jitter_sq_ / static_cast<double>(jitter_n_)) * 1e3;
     }
+    if (rest_jitter_n_ > 0)
+        s.rest_jitter_mm = std::sqrt(rest_jitter_sq_ / static_cast<double>(rest_jitter_n_)) * 1e3;
     s.max_body_speed = max_speed_;
     s.max_requested_speed = max_requested_speed_;
     s.frames = static_cast<int>(step_us_.size());

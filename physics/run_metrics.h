@@ -30,8 +30,11 @@ struct MetricsSummary {
     double max_penetration_mm = 0.0;
     double step_us_median = 0.0;
     double step_us_p99 = 0.0;
-    double jitter_mm = 0.0;            // physical joints, frame to frame, not in contact
-    double ghost_jitter_mm = 0.0;      // the same for the ghost (the input noise)
+    double jitter_mm = 0.0;        // physical joints, frame to frame, not in contact
+    double ghost_jitter_mm = 0.0;  // the same for the ghost (the input noise)
+    // Physical joints, frame to frame, in the frames their ghost moved under 0.1 mm, in
+    // contact or not: a still hand resting on something must not shiver.
+    double rest_jitter_mm = 0.0;
     double max_body_speed = 0.0;       // m/s, what bodies moved with
     double max_requested_speed = 0.0;  // m/s, what the dynamics asked for before the limit
     int frames = 0;
@@ -89,6 +92,8 @@ class RunMetrics {
     std::vector<double> errors_m_;
     double jitter_sq_ = 0.0, ghost_jitter_sq_ = 0.0;
     std::int64_t jitter_n_ = 0;
+    double rest_jitter_sq_ = 0.0;
+    std::int64_t rest_jitter_n_ = 0;
     std::vector<double> step_us_;
     double max_penetration_m_ = 0.0;
     double max_speed_ = 0.0;

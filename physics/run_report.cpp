@@ -55,6 +55,7 @@ nlohmann::json to_json(const RunResult& r) {
         {"step_us_p99", m.step_us_p99},
         {"jitter_mm", m.jitter_mm},
         {"ghost_jitter_mm", m.ghost_jitter_mm},
+        {"rest_jitter_mm", m.rest_jitter_mm},
         {"max_body_speed", m.max_body_speed},
         {"max_requested_speed",
          through_layer ? nlohmann::json() : nlohmann::json(m.max_requested_speed)},

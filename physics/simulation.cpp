@@ -324,6 +324,9 @@ void Simulation::step_substeps(int substeps) {
         ++last_substeps_;
 
         std::array<bool, 2> penetrating{};
+        for (auto& slot : hands_) {
+            if (slot->body) slot->body->clear_touches();
+        }
         world_->for_each_hand_contact([&](const World::ContactPoint& c) {
             const int tag = c.hand_part->getUserIndex2();
             const int side = tag >> 8;
@@ -334,6 +337,7 @@ void Simulation::step_substeps(int substeps) {
             if (c.distance > kTouchDistance && c.impulse <= 0.0) return;
             if (!slot.body->contact_response()) return;
             last_max_penetration_ = std::max(last_max_penetration_, -c.distance);
+            slot.body->note_touch(body, c.collider_dynamic);
             for (Joint j : slot.body->carried_joints(body))
                 slot.state.in_contact[index_of(j)] = true;
             world_->mark_touched(c.collider, slot.side);

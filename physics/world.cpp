@@ -313,7 +313,7 @@ void World::for_each_hand_contact(const std::function<void(const ContactPoint&)>
         for (int p = 0; p < m->getNumContacts(); ++p) {
             const btManifoldPoint& pt = m->getContactPoint(p);
             visit({a, static_cast<ColliderHandle>(b->getUserIndex2()), pt.getDistance(),
-                   pt.getAppliedImpulse()});
+                   pt.getAppliedImpulse(), !b->isStaticOrKinematicObject()});
         }
     }
 }

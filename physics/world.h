@@ -77,6 +77,7 @@ class World {
         ColliderHandle collider;
         double distance;  // < 0: penetrating
         double impulse;
+        bool collider_dynamic;  // the hand can move it (static and kinematic ones it cannot)
     };
     // Hand-versus-collider contact points, re-measured at the current poses.
     void for_each_hand_contact(const std::function<void(const ContactPoint&)>& visit) const;

@@ -62,6 +62,20 @@ TEST(SampleScenes, StillHandIsSteadierThanItsGhost) {
     EXPECT_GT(run_scene(jitter, raw).metrics.jitter_mm, 0.9 * smoothed.metrics.ghost_jitter_mm);
 }
 
+// A still ghost pressed into a table: the returned joints stay still (rest_jitter_mm), with the
+// palm flat on it and with the hand pitched so the fingers press first.
+TEST(SampleScenes, AHandRestingOnATableIsQuiet) {
+    ASSERT_EQ(default_drive().substeps, 1);
+    Scene scene = testing::sample_scene("press_table");
+    EXPECT_LT(run_scene(scene, RunOptions{}).metrics.rest_jitter_mm, 0.1);
+    const Quat pitch(Eigen::AngleAxisd(0.15, Vec3::UnitX()));
+    for (Keyframe& k : scene.hands[static_cast<int>(HandSide::Right)]->keyframes)
+        k.wrist.orientation = pitch * k.wrist.orientation;
+    const RunResult pitched = run_scene(scene, RunOptions{});
+    EXPECT_LT(pitched.metrics.rest_jitter_mm, 0.1);
+    EXPECT_LT(pitched.metrics.max_penetration_mm, 0.1);
+}
+
 TEST(SampleScenes, HeldObjectBarelySlipsAndGatedHandsAreExact) {
     const RunResult lift = run_scene(testing::sample_scene("lift_hold"), RunOptions{});
     ASSERT_TRUE(lift.predicates.at(0).slip_mm);
