@@ -273,6 +273,19 @@ const std::vector<Joint>& PhysicalHand::carried_joints(int body) const {
     return bodies_[static_cast<std::size_t>(body)]->carried;
 }
 
+double PhysicalHand::max_point_speed() const {
+    double fastest = 0.0;
+    for (const auto& b : bodies_) {
+        btVector3 centre;
+        btScalar radius;
+        b->shape->getBoundingSphere(centre, radius);
+        const btRigidBody& r = *b->rigid;
+        fastest = std::max(fastest, static_cast<double>(r.getLinearVelocity().length() +
+                                                        r.getAngularVelocity().length() * radius));
+    }
+    return fastest;
+}
+
 void PhysicalHand::bounds(Vec3& lo, Vec3& hi) const {
     lo = Vec3::Constant(std::numeric_limits<double>::infinity());
     hi = -lo;

@@ -53,6 +53,9 @@ class PhysicalHand {
     std::size_t body_count() const { return bodies_.size(); }
     // The joints a body carries (contact flags are per joint).
     const std::vector<Joint>& carried_joints(int body) const;
+    // The fastest any point of a body moves (its centre's speed plus its spin times its
+    // bounding radius), m/s.
+    double max_point_speed() const;
     // World bounds of all bodies.
     void bounds(Vec3& lo, Vec3& hi) const;
     const DriveSettings& drive_settings() const { return drive_; }

@@ -2,9 +2,11 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "drive.h"
@@ -120,7 +122,12 @@ class Simulation {
     // Takes the step's ghost sample (`step_dt` after the last) and decides whether the hand
     // is simulated in it.
     void update_hand_gate(HandSlot& slot, const HandPose& ghost, double step_dt);
-    void collect_contacts();
+    // Into how many pieces a substep of length h is cut so that no hand part near a collider
+    // moves further in one than its contacts reach ahead.
+    int pieces_for_fast_parts(double h, double step_dt) const;
+    using ContactIndex = std::map<std::tuple<int, int, ColliderHandle>, std::size_t>;
+    // After each world step: contact flags, penetration, touched colliders, contacts_.
+    void collect_contacts(ContactIndex& contact_index);
     void publish_hand(HandSlot& slot);
 
     SimulationSettings settings_;
