@@ -237,25 +237,44 @@ void PhysicalHand::set_contact_response(bool enabled) {
     }
 }
 
+Pose PhysicalHand::body_pose(const Body& b, const HandPose& target) const {
+    Pose pose = from_bt(b.rigid->getWorldTransform());
+    // A sphere's orientation means nothing: it carries its joint turned as the target is.
+    if (drive_.body_model == BodyModel::JointSpheres)
+        pose.orientation = target_of(b, target).orientation;
+    return pose;
+}
+
+Pose PhysicalHand::joint_on(const Body& b, Joint j, const HandPose& target) const {
+    const Pose anchor_to_joint = target[b.anchor].inverse() * target[j];
+    Pose joint = body_pose(b, target) * b.offset.inverse() * anchor_to_joint;
+    joint.orientation.normalize();
+    return joint;
+}
+
 void PhysicalHand::read(const HandPose& target, PhysicalHandState& out) const {
     out.joints.active = target.active;
     out.joints.radii = target.radii;
+    out.max_joint_gap = 0.0;
     for (std::size_t j = 0; j < kJointCount; ++j) {
+        const Joint joint_id = static_cast<Joint>(j);
         const Body& b = *bodies_[static_cast<std::size_t>(body_of_joint_[j])];
         const btRigidBody& r = *b.rigid;
-        Pose body_pose = from_bt(r.getWorldTransform());
-        if (drive_.body_model == BodyModel::JointSpheres) {
-            body_pose.orientation = target_of(b, target).orientation;
-        }
-        const Pose anchor_to_joint = target[b.anchor].inverse() * target.joints[j];
-        Pose joint = body_pose * b.offset.inverse() * anchor_to_joint;
-        joint.orientation.normalize();
+        const Pose joint = joint_on(b, joint_id, target);
         out.joints.joints[j] = joint;
         const Vec3 w = from_bt(r.getAngularVelocity());
         out.angular_velocity[j] = w;
-        out.linear_velocity[j] =
-            from_bt(r.getLinearVelocity()) + w.cross(joint.position - body_pose.position);
+        out.linear_velocity[j] = from_bt(r.getLinearVelocity()) +
+                                 w.cross(joint.position - from_bt(r.getCenterOfMassPosition()));
         out.drive_force[j] = b.last_force;
+        // Where the bone before this joint ends: the joint as its parent's body places it.
+        const std::optional<Joint> parent = joint_parent(joint_id);
+        if (!parent) continue;
+        const int parent_body = body_of_joint_[index_of(*parent)];
+        if (parent_body == body_of_joint_[j]) continue;
+        const Pose end =
+            joint_on(*bodies_[static_cast<std::size_t>(parent_body)], joint_id, target);
+        out.max_joint_gap = std::max(out.max_joint_gap, (end.position - joint.position).norm());
     }
 }
 

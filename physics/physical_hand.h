@@ -65,6 +65,9 @@ class PhysicalHand {
   private:
     struct Body;
     Pose target_of(const Body& body, const HandPose& target) const;
+    Pose body_pose(const Body& body, const HandPose& target) const;
+    // Joint `j` as `body` places it, keeping its offset in `target` from the body's anchor.
+    Pose joint_on(const Body& body, Joint j, const HandPose& target) const;
 
     HandSide side_;
     DriveSettings drive_;

@@ -28,6 +28,7 @@ struct MetricsSummary {
     double tracking_error_rms_mm = 0.0;
     double tracking_error_p99_mm = 0.0;
     double max_penetration_mm = 0.0;
+    double max_joint_gap_mm = 0.0;  // the physical hand's, PhysicalHandState::max_joint_gap
     double step_us_median = 0.0;
     double step_us_p99 = 0.0;
     double jitter_mm = 0.0;        // physical joints, frame to frame, not in contact
@@ -61,6 +62,7 @@ class RunMetrics {
     struct Frame {
         double step_us = 0.0;
         double max_penetration_m = 0.0;
+        double max_joint_gap_m = 0.0;
         double max_body_speed = 0.0;
         double max_requested_speed = 0.0;
         bool nonfinite = false;
@@ -96,6 +98,7 @@ class RunMetrics {
     std::int64_t rest_jitter_n_ = 0;
     std::vector<double> step_us_;
     double max_penetration_m_ = 0.0;
+    double max_joint_gap_m_ = 0.0;
     double max_speed_ = 0.0;
     double max_requested_speed_ = 0.0;
     int nonfinite_ = 0;

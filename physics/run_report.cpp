@@ -51,6 +51,8 @@ nlohmann::json to_json(const RunResult& r) {
         {"tracking_error_p99_mm", m.tracking_error_p99_mm},
         {"max_penetration_mm",
          through_layer ? nlohmann::json() : nlohmann::json(m.max_penetration_mm)},
+        {"max_joint_gap_mm",
+         through_layer ? nlohmann::json() : nlohmann::json(m.max_joint_gap_mm)},
         {"step_us_median", m.step_us_median},
         {"step_us_p99", m.step_us_p99},
         {"jitter_mm", m.jitter_mm},

@@ -1,5 +1,6 @@
 #include "scene_run.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -81,6 +82,8 @@ RunResult run_scene(const Scene& input, const SimulationSettings& settings,
         }
         metrics.add_frame({.step_us = step_us,
                            .max_penetration_m = sim.last_max_penetration(),
+                           .max_joint_gap_m = std::max(sim.hand(HandSide::Left).max_joint_gap,
+                                                       sim.hand(HandSide::Right).max_joint_gap),
                            .max_body_speed = sim.last_max_body_speed(),
                            .max_requested_speed = sim.last_max_requested_speed(),
                            .nonfinite = !sim.state_is_finite()});

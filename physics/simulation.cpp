@@ -405,6 +405,7 @@ void Simulation::publish_hand(HandSlot& slot) {
         s.simulated = false;
         s.in_contact = {};
         s.drive_force = {};
+        s.max_joint_gap = 0.0;
         return;
     }
     s.simulated = slot.simulated;
@@ -424,6 +425,7 @@ void Simulation::publish_hand(HandSlot& slot) {
     }
     s.in_contact = {};
     s.drive_force = {};
+    s.max_joint_gap = 0.0;
 }
 
 }  // namespace physhand

@@ -46,6 +46,9 @@ struct PhysicalHandState {
     std::array<bool, kJointCount> in_contact{};     // joint's body touched a collider
     std::array<double, kJointCount> drive_force{};  // |spring force| on the joint's body, N
     bool simulated = false;  // false: gated or untracked, joints are the ghost's exactly
+    // The largest distance between the ends of two bones that meet at a joint (each bone's
+    // body placing the joint), m: how far the hand has come apart.
+    double max_joint_gap = 0.0;
 };
 
 // Counters of pathological input, for tests and logs.
