@@ -318,9 +318,20 @@ void Simulation::step_substeps(int substeps) {
 
     const double h = 1.0 / (settings_.frame_rate_hz * settings_.drive.substeps);
     const double step_dt = h * substeps;
+    // How fast each hand's target moves in this step: the drive can reach it within a substep.
+    std::array<double, 2> target_speed{};
+    for (std::size_t side = 0; side < hands_.size(); ++side) {
+        const HandSlot& slot = *hands_[side];
+        if (!slot.simulated) continue;
+        for (std::size_t j = 0; j < kJointCount; ++j) {
+            const double moved =
+                (slot.target.joints[j].position - slot.previous_target.joints[j].position).norm();
+            target_speed[side] = std::max(target_speed[side], moved / step_dt);
+        }
+    }
     ContactIndex contact_index;
     for (int i = 0; i < substeps; ++i) {
-        const int pieces = pieces_for_fast_parts(h, step_dt);
+        const int pieces = pieces_for_fast_parts(h, target_speed);
         for (int p = 0; p < pieces; ++p) {
             const double fraction = (i + (p + 1.0) / pieces) / substeps;
             for (auto& slot : hands_) {
@@ -339,19 +350,12 @@ void Simulation::step_substeps(int substeps) {
     world_->finish_kinematic_motion();
 }
 
-int Simulation::pieces_for_fast_parts(double h, double step_dt) const {
+int Simulation::pieces_for_fast_parts(double h, const std::array<double, 2>& target_speed) const {
     int pieces = 1;
-    for (const auto& slot : hands_) {
+    for (std::size_t side = 0; side < hands_.size(); ++side) {
+        const HandSlot* slot = hands_[side].get();
         if (!slot->simulated || !slot->body->contact_response()) continue;
-        // The target's speed counts too: the drive can reach it within the substep.
-        double target_speed = 0.0;
-        for (std::size_t j = 0; j < kJointCount; ++j) {
-            target_speed = std::max(target_speed, (slot->target.joints[j].position -
-                                                   slot->previous_target.joints[j].position)
-                                                          .norm() /
-                                                      step_dt);
-        }
-        const double travel = std::max(slot->body->max_point_speed(), target_speed) * h;
+        const double travel = std::max(slot->body->max_point_speed(), target_speed[side]) * h;
         if (travel <= kSafeTravel) continue;
         Vec3 lo, hi;
         slot->body->bounds(lo, hi);

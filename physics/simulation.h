@@ -127,7 +127,8 @@ class Simulation {
     void update_hand_gate(HandSlot& slot, const HandPose& ghost, double step_dt);
     // Into how many pieces a substep of length h is cut so that no hand part near a collider
     // moves further in one than its contacts reach ahead.
-    int pieces_for_fast_parts(double h, double step_dt) const;
+    // `target_speed`: the fastest joint of each hand's target in this step, m/s.
+    int pieces_for_fast_parts(double h, const std::array<double, 2>& target_speed) const;
     using ContactIndex = std::map<std::tuple<int, int, ColliderHandle>, std::size_t>;
     // After each world step: contact flags, penetration, touched colliders, contacts_.
     void collect_contacts(ContactIndex& contact_index);
