@@ -32,9 +32,13 @@ const std::vector<DriveSettings>& builtin_drives() {
     // Gains and smoothing of the implicit drives come from the sweep in BENCHMARKS.md. The
     // stiff drives would pass tracking noise on whole, so they follow a smoothed ghost: 1 Hz
     // when still, the cutoff rising 3.5 kHz per m/s (measured: jitter 4.8 -> 2.1 mm under
-    // 2 mm of noise, for 0.03-0.06 mm more tracking error in the moving scenes). `paper`
-    // follows the ghost as it comes, as Algorithm 1 does.
-    constexpr GhostSmoothing kSmoothing{1.0, 3500.0};
+    // 2 mm of noise, for 0.03-0.06 mm more tracking error in the moving scenes). Touching or
+    // not, they first take out the noise the NoiseFilter measures, expecting joints to change
+    // speed by about 1 m/s^2 (robustness benchmark: grips under 3 mm of noise held 16 -> 60 %
+    // for bones, 20 -> 80 % for implicit; 0.5-4 m/s^2 within seed noise of that, 4 worse).
+    // `paper` follows the ghost as it comes, as Algorithm 1 does.
+    constexpr GhostSmoothing kSmoothing{
+        .min_cutoff_hz = 1.0, .beta = 3500.0, .noise_acceleration = 1.0};
     static const std::vector<DriveSettings> drives = {
         {"bones", BodyModel::BoneCapsules, DriveLaw::Implicit, 20000.0, 90.0, true, 20.0, 1,
          kSmoothing},

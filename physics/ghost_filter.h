@@ -19,6 +19,9 @@ struct GhostSmoothing {
     double beta = 0.0;           // Hz of cutoff per m/s of speed
     double derivative_cutoff_hz = 1.0;
     double joint_speed_floor = 0.05;  // m/s
+    // Before all that, and whether or not the hand touches anything, the NoiseFilter's
+    // expected joint acceleration, m/s^2 (0: off).
+    double noise_acceleration = 0.0;
     bool enabled() const { return min_cutoff_hz > 0.0; }
 };
 

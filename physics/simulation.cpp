@@ -10,6 +10,7 @@
 
 #include "collider_shape.h"
 #include "ghost_filter.h"
+#include "noise_filter.h"
 #include "physical_hand.h"
 #include "tracking_gap.h"
 #include "world.h"
@@ -75,6 +76,7 @@ struct Simulation::HandSlot {
     HandPose previous_ghost;             // ghost at the previous step
     HandPose target;                     // what the drive follows: the ghost, smoothed
     HandPose previous_target;            // target at the previous step
+    NoiseFilter noise;
     GhostFilter filter;
     TrackingGap gap;
     HandPose target_at_loss;  // the target when tracking was last lost, and its velocity
@@ -199,6 +201,7 @@ void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input, double 
         slot.ghost = sample;
         slot.previous_target = continues ? slot.target : sample;
         if (!continues) {
+            slot.noise.reset(sample);
             slot.filter.reset(sample);
             slot.gap.reset();
             slot.target = sample;
@@ -208,11 +211,12 @@ void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input, double 
             // reaches into the object, which smoothing would delay.
             // Samples are one step apart, or a whole loss apart after one.
             const double sample_dt = was_lost ? time_s_ - slot.last_tracked_time : step_dt;
-            HandPose followed = sample;
+            HandPose followed =
+                slot.noise.apply(sample, sample_dt, settings_.drive.smoothing.noise_acceleration);
             if (slot.simulated && !touching) {
-                followed = slot.filter.apply(sample, sample_dt, settings_.drive.smoothing);
+                followed = slot.filter.apply(followed, sample_dt, settings_.drive.smoothing);
             } else {
-                slot.filter.follow(sample, sample_dt, settings_.drive.smoothing);
+                slot.filter.follow(followed, sample_dt, settings_.drive.smoothing);
             }
             if (was_lost) ++guards_.reacquisitions;
             // A hand holding or pressing something is eased onto its returning ghost, so what
