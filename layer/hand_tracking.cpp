@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <string>
 #include <utility>
 
@@ -187,24 +188,35 @@ void SessionState::advance(XrTime time) {
     // Compared as XrTime: the simulation's own clock is rounded to its substeps, so a
     // repeated time can look later than it and would sample the hands again for nothing.
     if (epoch && time <= advanced_to) return;
-    if (!epoch) epoch = time;
-    advanced_to = time;
-    // Seconds since the session's first located time: XrTime counts nanoseconds from an
-    // arbitrary origin, too large for the simulation's double seconds to stay exact.
-    const double t = clock_seconds(time - *epoch);
-    ghosts = {};
-    for (const HandSide side : kHandSides) {
-        const std::vector<XrHandTrackerEXT>& side_trackers = trackers[side_index(side)];
-        // The app's own tracker first, so that its results never depend on the layer's.
-        const XrHandTrackerEXT tracker =
-            side_trackers.empty() ? own_trackers[side_index(side)] : side_trackers.front();
-        if (tracker == XR_NULL_HANDLE) continue;  // never tracked: stays inactive
-        // Sampled at the stepped-to time for both hands, whichever hand the app asked for.
-        const GhostSample sample = sample_ghost(*this, tracker, time);
-        ghosts[side_index(side)] = to_hand_pose(sample);
-        if (recorder) recorder->write(side, t, sample.joints);
+    if (!epoch) {
+        // Physics frames fall on whole periods of the runtime's clock, so the same tracking
+        // gives the same physics whatever the display rate and wherever its first frame falls.
+        const std::int64_t period = frame_period_ns(simulation->settings().frame_rate_hz);
+        epoch = time - ((time % period) + period) % period;
     }
-    simulation->step_to(t, ghosts);
+    advanced_to = time;
+    // Seconds since the epoch: XrTime counts nanoseconds from an arbitrary origin, too large
+    // for the simulation's double seconds to stay exact.
+    const double t = clock_seconds(time - *epoch);
+    // Each physics frame samples the runtime at its own time, and the display time last,
+    // so the physics is the same whatever rate the app displays at (Simulation::step_sampling).
+    simulation->step_sampling(t, [&](double sample_t) {
+        // Whole nanoseconds, as both the display time and physics frames are.
+        const XrTime at = *epoch + std::llround(sample_t * 1e9);
+        ghosts = {};
+        for (const HandSide side : kHandSides) {
+            const std::vector<XrHandTrackerEXT>& side_trackers = trackers[side_index(side)];
+            // The app's own tracker first, so that its results never depend on the layer's.
+            const XrHandTrackerEXT tracker =
+                side_trackers.empty() ? own_trackers[side_index(side)] : side_trackers.front();
+            if (tracker == XR_NULL_HANDLE) continue;  // never tracked: stays inactive
+            // Both hands at the same time, whichever hand the app asked for.
+            const GhostSample sample = sample_ghost(*this, tracker, at);
+            ghosts[side_index(side)] = to_hand_pose(sample);
+            if (recorder) recorder->write(side, sample_t, sample.joints);
+        }
+        return ghosts;
+    });
 }
 
 XRAPI_ATTR XrResult XRAPI_CALL CreateHandTrackerEXT(XrSession session,

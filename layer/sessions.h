@@ -87,8 +87,9 @@ class SessionState {
     XrResult frame_in_space(XrSpace base, XrTime time, Pose& pose,
                             XrSpaceLocationFlags& flags) const;
 
-    // Advances the simulation to `time`, with both hands sampled from the runtime at that
-    // time; does nothing for a time at or before the simulation's (hand_tracking.cpp).
+    // Advances the simulation to `time`, with both hands sampled from the runtime at each
+    // physics frame's time and at `time`; does nothing for a time at or before the latest
+    // (hand_tracking.cpp).
     void advance(XrTime time);
     // The once-per-frame step at xrEndFrame, for apps that locate no hands: when the frame
     // has something to show (an overlay, or colliders), creates the layer's own trackers

@@ -25,6 +25,10 @@ double NoiseFilter::noise() const {
     return std::sqrt(noise_variance_);
 }
 
+bool NoiseFilter::passes_clean() const {
+    return noise() <= kCleanNoise;
+}
+
 void NoiseFilter::measure_noise(const HandPose& ghost, double dt) {
     const bool same_dt = intervals_ > 0 && std::abs(dt - last_dt_) <= 1e-3 * last_dt_;
     intervals_ = same_dt ? std::min(intervals_ + 1, 3) : 1;
@@ -61,15 +65,14 @@ HandPose NoiseFilter::apply(const HandPose& ghost, double dt, double acceleratio
     // Noise under the floor is clean tracking (a smooth motion's own third differences
     // read as up to 0.13 mm in the sample scenes): passed on exactly, its velocity kept for
     // when the noise rises.
-    const double noise = this->noise() - kCleanNoise;
-    if (!(noise > 0.0)) {
+    if (passes_clean()) {
         for (std::size_t j = 0; j < kJointCount; ++j)
             velocity_[j] = (ghost.joints[j].position - state_.joints[j].position) / dt;
         state_ = ghost;
         return ghost;
     }
     // Kalata's steady-state gains for the tracking index lambda.
-    const double lambda = acceleration * dt * dt / noise;
+    const double lambda = acceleration * dt * dt / (noise() - kCleanNoise);
     const double r = (4.0 + lambda - std::sqrt(8.0 * lambda + lambda * lambda)) / 4.0;
     const double alpha = 1.0 - r * r;
     const double beta = 2.0 * (2.0 - alpha) - 4.0 * r;

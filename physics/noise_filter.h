@@ -22,6 +22,8 @@ class NoiseFilter {
     HandPose apply(const HandPose& ghost, double dt, double acceleration);
     // Standard deviation per axis of the noise measured so far, m.
     double noise() const;
+    // The noise is too little to filter: the ghost passes as it came.
+    bool passes_clean() const;
 
   private:
     void measure_noise(const HandPose& ghost, double dt);

@@ -25,14 +25,75 @@ double quantile(std::vector<double> values, double q) {
     return *nth;
 }
 
+void RunMetrics::add_smoothness(HandHistory& h, double t, const HandPose& ghost,
+                                const HandPose& physical, bool touching) {
+    static constexpr std::array<Joint, kJerkPoints> kPoints = {Joint::Wrist,    Joint::ThumbTip,
+                                                               Joint::IndexTip, Joint::MiddleTip,
+                                                               Joint::RingTip,  Joint::LittleTip};
+    JerkWindow& w = h.jerk;
+    if (!h.have_previous || touching) {
+        w.frames = 0;
+    } else {
+        double ghost_moved = 0.0;
+        bool same = true;
+        for (std::size_t j = 0; j < kJointCount; ++j) {
+            ghost_moved =
+                std::max(ghost_moved,
+                         (ghost.joints[j].position - h.previous_ghost.joints[j].position).norm());
+            same = same && physical.joints[j].position == h.previous_physical.joints[j].position &&
+                   physical.joints[j].orientation.coeffs() ==
+                       h.previous_physical.joints[j].orientation.coeffs();
+        }
+        if (same && ghost_moved > kGhostAtRest_m) ++repeated_pose_frames_;
+    }
+    if (w.frames == 3) {
+        // Jerk is 6 times the third divided difference over the four frames' times.
+        const std::array<double, 4> times = {t, w.t[0], w.t[1], w.t[2]};
+        std::array<double, 4> weight{};
+        for (std::size_t i = 0; i < 4; ++i) {
+            double product = 1.0;
+            for (std::size_t k = 0; k < 4; ++k) {
+                if (k != i) product *= times[i] - times[k];
+            }
+            weight[i] = 6.0 / product;
+        }
+        for (std::size_t p = 0; p < kJerkPoints; ++p) {
+            Vec3 jerk = weight[0] * physical[kPoints[p]].position;
+            Vec3 ghost_jerk = weight[0] * ghost[kPoints[p]].position;
+            for (std::size_t i = 1; i < 4; ++i) {
+                jerk += weight[i] * w.physical[i - 1][p];
+                ghost_jerk += weight[i] * w.ghost[i - 1][p];
+            }
+            jerk_sq_ += jerk.squaredNorm();
+            ghost_jerk_sq_ += ghost_jerk.squaredNorm();
+            ++jerk_n_;
+        }
+    }
+    if (touching) return;
+    for (std::size_t i = 2; i > 0; --i) {
+        w.physical[i] = w.physical[i - 1];
+        w.ghost[i] = w.ghost[i - 1];
+        w.t[i] = w.t[i - 1];
+    }
+    for (std::size_t p = 0; p < kJerkPoints; ++p) {
+        w.physical[0][p] = physical[kPoints[p]].position;
+        w.ghost[0][p] = ghost[kPoints[p]].position;
+    }
+    w.t[0] = t;
+    w.frames = std::min(w.frames + 1, 3);
+}
+
 void RunMetrics::add_hand(double t, HandSide side, const HandPose& ghost, const HandPose& physical,
                           const std::array<bool, kJointCount>& in_contact) {
     HandHistory& h = history_[static_cast<int>(side)];
     if (!ghost.active || !physical.active) {
         h.have_previous = false;
+        h.jerk.frames = 0;
         h.palm_speed.reset();
         return;
     }
+    add_smoothness(h, t, ghost, physical,
+                   std::any_of(in_contact.begin(), in_contact.end(), [](bool c) { return c; }));
     if (h.have_previous && t > h.previous_t) {
         h.palm_speed =
             (ghost[Joint::Palm].position - h.previous_ghost[Joint::Palm].position).norm() /
@@ -117,6 +178,11 @@ MetricsSummary RunMetrics::summary() const {
     }
     if (rest_jitter_n_ > 0)
         s.rest_jitter_mm = std::sqrt(rest_jitter_sq_ / static_cast<double>(rest_jitter_n_)) * 1e3;
+    s.repeated_pose_frames = repeated_pose_frames_;
+    if (jerk_n_ > 0) {
+        s.jerk_rms = std::sqrt(jerk_sq_ / static_cast<double>(jerk_n_));
+        s.ghost_jerk_rms = std::sqrt(ghost_jerk_sq_ / static_cast<double>(jerk_n_));
+    }
     s.max_body_speed = max_speed_;
     s.max_requested_speed = max_requested_speed_;
     s.frames = static_cast<int>(step_us_.size());

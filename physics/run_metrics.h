@@ -36,6 +36,13 @@ struct MetricsSummary {
     // Physical joints, frame to frame, in the frames their ghost moved under 0.1 mm, in
     // contact or not: a still hand resting on something must not shiver.
     double rest_jitter_mm = 0.0;
+    // Frames that returned the previous frame's joints exactly while the ghost moved over
+    // 0.1 mm and no part of that hand touched anything: a hand that judders.
+    int repeated_pose_frames = 0;
+    // RMS jerk (m/s^3) of the wrist and fingertips over the frames nothing touched, the
+    // physical hand's and the ghost's: how smoothly the hand moves frame to frame.
+    double jerk_rms = 0.0;
+    double ghost_jerk_rms = 0.0;
     double max_body_speed = 0.0;       // m/s, what bodies moved with
     double max_requested_speed = 0.0;  // m/s, what the dynamics asked for before the limit
     int frames = 0;
@@ -72,8 +79,16 @@ class RunMetrics {
     MetricsSummary summary() const;
 
   private:
+    // The wrist and fingertips at the last frames, for their jerk.
+    static constexpr std::size_t kJerkPoints = 6;
+    struct JerkWindow {
+        std::array<std::array<Vec3, kJerkPoints>, 3> physical{}, ghost{};  // newest first
+        std::array<double, 3> t{};
+        int frames = 0;  // consecutive frames held, up to 3
+    };
     struct HandHistory {
         std::array<double, kJointCount> last_contact_t;
+        JerkWindow jerk;
         HandPose previous_physical;
         HandPose previous_ghost;
         double previous_t = 0.0;
@@ -87,6 +102,10 @@ class RunMetrics {
         double hand_speed = 0.0;               // its ghost palm's then
         std::optional<Release> release;        // since its last contact
     };
+    // Repeated poses and jerk of one hand's frame; `touching`: any of its joints in contact.
+    void add_smoothness(HandHistory& h, double t, const HandPose& ghost, const HandPose& physical,
+                        bool touching);
+
     std::array<HandHistory, 2> history_;
     std::vector<BodyHistory> bodies_;
     std::array<bool, 2> touching_now_{};
@@ -96,6 +115,9 @@ class RunMetrics {
     std::int64_t jitter_n_ = 0;
     double rest_jitter_sq_ = 0.0;
     std::int64_t rest_jitter_n_ = 0;
+    int repeated_pose_frames_ = 0;
+    double jerk_sq_ = 0.0, ghost_jerk_sq_ = 0.0;
+    std::int64_t jerk_n_ = 0;
     std::vector<double> step_us_;
     double max_penetration_m_ = 0.0;
     double max_joint_gap_m_ = 0.0;

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "frame_clock.h"
+
 namespace physhand {
 
 namespace {
@@ -45,19 +47,22 @@ nlohmann::json to_json(const RunResult& r) {
         {"path", r.path},
         {"drive", r.drive},
         {"substeps", r.substeps},
+        {"display_hz", r.display_hz},
         {"success", r.success},
         {"predicates", predicates},
         {"tracking_error_rms_mm", m.tracking_error_rms_mm},
         {"tracking_error_p99_mm", m.tracking_error_p99_mm},
         {"max_penetration_mm",
          through_layer ? nlohmann::json() : nlohmann::json(m.max_penetration_mm)},
-        {"max_joint_gap_mm",
-         through_layer ? nlohmann::json() : nlohmann::json(m.max_joint_gap_mm)},
+        {"max_joint_gap_mm", through_layer ? nlohmann::json() : nlohmann::json(m.max_joint_gap_mm)},
         {"step_us_median", m.step_us_median},
         {"step_us_p99", m.step_us_p99},
         {"jitter_mm", m.jitter_mm},
         {"ghost_jitter_mm", m.ghost_jitter_mm},
         {"rest_jitter_mm", m.rest_jitter_mm},
+        {"repeated_pose_frames", m.repeated_pose_frames},
+        {"jerk_rms", m.jerk_rms},
+        {"ghost_jerk_rms", m.ghost_jerk_rms},
         {"max_body_speed", m.max_body_speed},
         {"max_requested_speed",
          through_layer ? nlohmann::json() : nlohmann::json(m.max_requested_speed)},
@@ -82,6 +87,10 @@ std::string summary_line(const RunResult& r) {
         r.scene.c_str(), r.success ? "OK" : "FAIL", r.path.c_str(), r.drive.c_str(), r.substeps,
         r.metrics.tracking_error_rms_mm, r.metrics.step_us_median, r.metrics.nonfinite_count);
     std::string line = buf;
+    if (r.display_hz != kFrameRateHz) {
+        std::snprintf(buf, sizeof buf, "  display %g Hz", r.display_hz);
+        line += buf;
+    }
     if (r.path != "layer") {
         std::snprintf(buf, sizeof buf, "  penetration %.2f mm", r.metrics.max_penetration_mm);
         line += buf;

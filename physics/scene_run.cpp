@@ -27,12 +27,20 @@ SimulationSettings settings_for(const RunOptions& options) {
     return settings;
 }
 
+void check_display_timing(const DisplayTiming& display) {
+    if (!(display.rate_hz >= 20.0 && display.rate_hz <= 240.0))
+        throw std::invalid_argument("display rate must be from 20 to 240 Hz");
+    if (!(display.jitter_ms >= 0.0 && display.jitter_ms * 1e-3 < 1.0 / (3.0 * display.rate_hz)))
+        throw std::invalid_argument("frame jitter must be >= 0 and under a third of a frame");
+}
+
 RunResult run_scene(const Scene& scene, const RunOptions& options) {
-    return run_scene(scene, settings_for(options), options.seed);
+    return run_scene(scene, settings_for(options), options.seed, options.display);
 }
 
 RunResult run_scene(const Scene& input, const SimulationSettings& settings,
-                    std::optional<std::uint64_t> seed) {
+                    std::optional<std::uint64_t> seed, const DisplayTiming& display) {
+    check_display_timing(display);
     Scene scene = input;
     if (seed) scene.tracking.seed = *seed;
     Simulation sim(settings, scene.gravity);
@@ -54,18 +62,24 @@ RunResult run_scene(const Scene& input, const SimulationSettings& settings,
     const TrackedHands tracked(scene);
     PredicateEvaluator predicates(scene);
     RunMetrics metrics;
-    const int frames = scene_frame_count(scene.duration_s);
-    for (int f = 1; f <= frames; ++f) {
-        const double t = frame_time_s(f);
+    const std::int64_t period_ns = frame_period_ns(display.rate_hz);
+    const auto jitter_ns = std::llround(display.jitter_ms * 1e6);
+    for (int f = 1;; ++f) {
+        const double t =
+            clock_seconds(f * period_ns + frame_jitter_ns(f, jitter_ns, display.jitter_seed));
         for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
             if (!scene.colliders[i].path.empty()) {
                 sim.set_kinematic_target(handles[i], round_to_float(scene.colliders[i].pose_at(t)));
             }
         }
-        const std::array<HandPose, 2> ghosts = {round_to_float(tracked.ghost(HandSide::Left, t)),
-                                                round_to_float(tracked.ghost(HandSide::Right, t))};
+        // As a runtime reports them: in floats, at any time asked for.
+        const auto ghosts_at = [&](double time) {
+            return std::array<HandPose, 2>{round_to_float(tracked.ghost(HandSide::Left, time)),
+                                           round_to_float(tracked.ghost(HandSide::Right, time))};
+        };
+        const std::array<HandPose, 2> ghosts = ghosts_at(t);
         const auto start = std::chrono::steady_clock::now();
-        sim.step_to(t, ghosts);
+        sim.step_sampling(t, ghosts_at);
         const double step_us =
             std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start)
                 .count();
@@ -88,12 +102,14 @@ RunResult run_scene(const Scene& input, const SimulationSettings& settings,
                            .max_requested_speed = sim.last_max_requested_speed(),
                            .nonfinite = !sim.state_is_finite()});
         predicates.add_frame(t, lookup, wrists);
+        if (scene_over(t, scene.duration_s)) break;
     }
 
     RunResult result;
     result.scene = scene.name;
     result.drive = settings.drive.name;
     result.substeps = settings.drive.substeps;
+    result.display_hz = display.rate_hz;
     result.predicates = predicates.finish();
     result.success = std::all_of(result.predicates.begin(), result.predicates.end(),
                                  [](const PredicateResult& p) { return p.passed; });

@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "collider_shape.h"
+#include "frame_clock.h"
 #include "ghost_filter.h"
 #include "noise_filter.h"
 #include "physical_hand.h"
@@ -85,7 +86,8 @@ struct Simulation::HandSlot {
     bool have_ghost = false;
     bool simulated = false;
     double last_tracked_time = -std::numeric_limits<double>::infinity();
-    PhysicalHandState state;
+    PhysicalHandState state;  // at the last physics frame
+    PhysicalHandState shown;  // at the latest time asked for
 };
 
 Simulation::Simulation(const SimulationSettings& settings, const Vec3& gravity)
@@ -157,7 +159,7 @@ std::size_t Simulation::collider_count() const {
 }
 
 const PhysicalHandState& Simulation::hand(HandSide side) const {
-    return hands_[static_cast<int>(side)]->state;
+    return hands_[static_cast<int>(side)]->shown;
 }
 
 bool Simulation::state_is_finite() const {
@@ -280,30 +282,99 @@ void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input, double 
 }
 
 void Simulation::step_to(double time_s, const std::array<HandPose, 2>& ghosts) {
-    if (!std::isfinite(time_s)) return;
-    const double rate = settings_.frame_rate_hz * settings_.drive.substeps;
-    // Nearest tick, not floor: frame times in whole nanoseconds (1/90 s is not one) then
-    // always land on the same tick whatever the clock's origin.
-    const std::int64_t target = std::llround(time_s * rate);
+    const double before = shown_time_;
+    const bool first = !have_samples_;
+    step_sampling(time_s, [&](double frame_time) {
+        if (first || frame_time >= time_s - kSameTimeS) return ghosts;
+        std::array<HandPose, 2> between = ghosts;
+        const double s = std::clamp((frame_time - before) / (time_s - before), 0.0, 1.0);
+        for (std::size_t side = 0; side < 2; ++side) {
+            if (ghosts[side].active && last_samples_[side].active)
+                between[side] = interpolate_hand(last_samples_[side], ghosts[side], s);
+        }
+        return between;
+    });
+    if (shown_time_ == time_s) {
+        last_samples_ = ghosts;
+        have_samples_ = true;
+    }
+}
+
+std::int64_t Simulation::frame_at_or_before(double time_s, bool& on_grid) const {
+    const std::int64_t period_ns = frame_period_ns(settings_.frame_rate_hz);
+    const double frames = time_s * 1e9 / static_cast<double>(period_ns);
+    const auto nearest = static_cast<std::int64_t>(std::llround(frames));
+    on_grid = std::abs(time_s - clock_seconds(nearest * period_ns)) < kSameTimeS;
+    return on_grid ? nearest : static_cast<std::int64_t>(std::floor(frames));
+}
+
+void Simulation::step_sampling(double time_s, const GhostSource& ghosts_at) {
+    if (!std::isfinite(time_s) || (started_ && time_s <= shown_time_)) return;
+    const int substeps = settings_.drive.substeps;
+    const double frame_rate = settings_.frame_rate_hz;
+    const double rate = frame_rate * substeps;
+    const std::int64_t period_ns = frame_period_ns(frame_rate);
+    const auto frame_time = [&](std::int64_t frame) { return clock_seconds(frame * period_ns); };
+    bool on_grid = false;
+    const std::int64_t last_frame = frame_at_or_before(time_s, on_grid);
     if (!started_) {
-        tick_ = target - settings_.drive.substeps;  // the first call simulates one frame
+        tick_ = (last_frame - 1) * substeps;  // the first call simulates one frame
         started_ = true;
     }
-    if (target <= tick_) return;
-    const auto max_ticks =
-        std::max<std::int64_t>(1, static_cast<std::int64_t>(settings_.max_step_s * rate));
-    const int substeps = static_cast<int>(std::min(target - tick_, max_ticks));
-    tick_ = target - substeps;
-    time_s_ = static_cast<double>(tick_) / rate;
-
-    for (HandSide side : kHandSides) {
-        update_hand_gate(*hands_[static_cast<int>(side)], ghosts[static_cast<int>(side)],
-                         substeps / rate);
+    auto frame = tick_ / substeps;
+    const auto max_frames = std::max<std::int64_t>(
+        1, static_cast<std::int64_t>(settings_.max_step_s * frame_rate + 1e-9));
+    if (last_frame - frame > max_frames) frame = last_frame - max_frames;  // the rest is dropped
+    for (++frame; frame <= last_frame; ++frame) {
+        tick_ = (frame - 1) * substeps;
+        time_s_ = static_cast<double>(tick_) / rate;
+        const std::array<HandPose, 2> ghosts = ghosts_at(frame_time(frame));
+        for (HandSide side : kHandSides) {
+            update_hand_gate(*hands_[static_cast<int>(side)], ghosts[static_cast<int>(side)],
+                             1.0 / frame_rate);
+        }
+        step_substeps(substeps);
+        tick_ = frame * substeps;
+        time_s_ = static_cast<double>(tick_) / rate;
+        for (auto& slot : hands_) publish_hand(*slot);
     }
-    step_substeps(substeps);
-    tick_ = target;
-    time_s_ = static_cast<double>(tick_) / rate;
-    for (auto& slot : hands_) publish_hand(*slot);
+    shown_time_ = time_s;
+    if (on_grid) {
+        for (auto& slot : hands_) slot->shown = slot->state;
+        return;
+    }
+    const std::array<HandPose, 2> now = ghosts_at(time_s);
+    for (auto& slot : hands_) {
+        show_hand(*slot, time_s - frame_time(last_frame), now[static_cast<int>(slot->side)]);
+    }
+}
+
+void Simulation::show_hand(HandSlot& slot, double ahead_s, const HandPose& ghost_now) const {
+    slot.shown = slot.state;
+    if (!(ahead_s > 0.0) || !slot.state.joints.active) return;
+    // Clean tracking tells how a joint moved since the frame: a free joint moves as its
+    // ghost did, a gated hand is its ghost. A joint in contact, or a noisy ghost, carries on
+    // at the frame's velocities instead, so nothing is shown pressed into what stopped it and
+    // the noise the filter took out does not come back.
+    const bool ghost_moves = ghost_now.active && slot.tracked && slot.noise.passes_clean();
+    for (std::size_t j = 0; j < kJointCount; ++j) {
+        Pose& joint = slot.shown.joints.joints[j];
+        if (ghost_moves && !slot.state.in_contact[j]) {
+            const Pose& then = slot.ghost.joints[j];
+            const Pose& now = ghost_now.joints[j];
+            joint.position += now.position - then.position;
+            joint.orientation =
+                (now.orientation * then.orientation.conjugate() * joint.orientation).normalized();
+            continue;
+        }
+        joint.position += ahead_s * slot.state.linear_velocity[j];
+        const Vec3 turn = ahead_s * slot.state.angular_velocity[j];
+        const double angle = turn.norm();
+        if (angle > 0.0) {
+            joint.orientation =
+                (Quat(Eigen::AngleAxisd(angle, turn / angle)) * joint.orientation).normalized();
+        }
+    }
 }
 
 void Simulation::step_substeps(int substeps) {

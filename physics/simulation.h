@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -96,12 +97,28 @@ class Simulation {
     std::optional<BodyState> body_state(ColliderHandle handle) const;
     std::size_t collider_count() const;
 
-    // Advances simulated time to `time_s` in fixed substeps, driving the hands toward the
-    // ghosts sampled at that time (inactive: not tracked). An earlier or equal time steps
-    // nothing. The first call starts the clock and simulates one frame ending at `time_s`.
+    // Where the tracked hands were at a time, by HandSide (inactive: not tracked).
+    using GhostSource = std::function<std::array<HandPose, 2>(double time_s)>;
+
+    // Advances the physics, in frames of 1/settings().frame_rate_hz, to the last frame at or
+    // before `time_s`, each frame driving the hands toward the ghosts where they were at its
+    // time (`ghosts_at`; frames are timed in whole nanoseconds as physics/frame_clock.h times
+    // 90 Hz displays), then shows the hands at `time_s`. A time on the frames' grid (within a
+    // microsecond) shows that frame's state. Any other time (another display rate, jitter)
+    // shows the last frame's state moved on as its ghost moved since (sampled at `time_s`),
+    // or, for joints in contact or a noisy ghost, at the frame's own velocities. So the
+    // physics steps the same frames on the same ghosts whatever the display rate, and every
+    // display time gets a pose of its own. An earlier or equal time changes nothing. Over
+    // settings().max_step_s since the last frame, only that much is simulated. The first call
+    // starts the clock and simulates one frame, the last at or before its time.
+    void step_sampling(double time_s, const GhostSource& ghosts_at);
+    // The same for ghosts sampled at `time_s` alone: a frame between two calls takes them
+    // where they were between the two samples.
     void step_to(double time_s, const std::array<HandPose, 2>& ghosts);
+    // The last physics frame's time.
     double time() const { return time_s_; }
 
+    // The hand as shown at the latest time stepped to.
     const PhysicalHandState& hand(HandSide side) const;
     // Every pose, velocity and drive force of both hands and of every collider is finite
     // (the nonfinite_count of METRICS.md counts frames where this is false).
@@ -133,13 +150,23 @@ class Simulation {
     // After each world step: contact flags, penetration, touched colliders, contacts_.
     void collect_contacts(ContactIndex& contact_index);
     void publish_hand(HandSlot& slot);
+    // The last physics frame at or before `time_s`, and whether `time_s` is within a
+    // microsecond of it. Physics frames fall on the display clock of physics/frame_clock.h,
+    // in whole nanoseconds, so that a frame's ghosts are sampled at the very time a display
+    // at that rate would ask for.
+    std::int64_t frame_at_or_before(double time_s, bool& on_grid) const;
+    // What is shown `ahead_s` after the last physics frame, when the ghost is `ghost_now`.
+    void show_hand(HandSlot& slot, double ahead_s, const HandPose& ghost_now) const;
 
     SimulationSettings settings_;
     std::unique_ptr<World> world_;
     std::array<std::unique_ptr<HandSlot>, 2> hands_;
     std::vector<ContactInfo> contacts_;
     double time_s_ = 0.0;
-    std::int64_t tick_ = 0;
+    std::int64_t tick_ = 0;                 // the last physics frame's end, in substeps
+    double shown_time_ = 0.0;               // the latest time asked for
+    std::array<HandPose, 2> last_samples_;  // the ghosts given with it (step_to)
+    bool have_samples_ = false;
     bool started_ = false;
     double last_max_penetration_ = 0.0;
     SpeedCheck last_speeds_;

@@ -3,7 +3,8 @@
 # 1..16 substeps on the measurement scenes, scaling with the number of colliders, the
 # layer's overhead per call (bench/overhead.json), and the stress figures of every drive
 # over STRESS_SEEDS (default 1-100) of pathological tracking and the extreme parameters, and
-# the robustness benchmark (variants of the sample tasks, SEEDS seeds each, default 3).
+# the robustness benchmark (variants of the sample tasks, SEEDS seeds each, default 3), and
+# the sample scenes at every display rate.
 # Takes several minutes; not part of the tests.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -13,6 +14,7 @@ out=$(mktemp -d)
 "$build/tests/physhand-sweep" --out "$out" --repeat "${REPEAT:-3}"
 "$build/tests/physhand-scaling" --out "$out" --repeat "${REPEAT:-3}"
 "$build/tests/physhand-robustness" --out "$out" --repeat "${SEEDS:-3}" >/dev/null
+"$build/tests/physhand-display-rates" --out "$out" --repeat "${REPEAT:-3}" >/dev/null
 "$build/tests/physhand-overhead" --benchmark_repetitions="${REPEAT:-3}" \
     --benchmark_out="$out/overhead.json" --benchmark_out_format=json --summary "$out/overhead.md"
 seeds=${STRESS_SEEDS:-1-100}
@@ -33,6 +35,12 @@ cp "$out"/*.csv "$out"/*.svg "$out/overhead.json" "$root/bench/"
     cat "$root/bench/robustness-intro.md"
     echo
     cat "$out/robustness.md"
+    echo
+    echo "## Display rates"
+    echo
+    echo "\`physhand-display-rates\`: the scenes shown at each display rate and at 90 Hz with each frame up to 2 ms early or late (\`physhand-scene --display-hz R --frame-jitter-ms J\`); the physics steps its own 90 Hz frames whatever the display. free_motion's tracking_error_rms_mm, jerk_rms of the returned wrist and fingertips beside the ghost's (ghost_jerk_rms), repeated_pose_frames and step_us_median (one display frame's call, median of ${REPEAT:-3} runs; at 120 and 144 Hz some calls step no physics frame), then how many of throw, sphere, displacement, stack and lift_hold succeed."
+    echo
+    cat "$out/display_rates.md"
     echo
     echo "## Overhead through the layer"
     echo

@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -144,12 +146,11 @@ bool XrApp::poll_events() {
     }
 }
 
-void XrApp::play_frame(const Scene& scene, int frame, XrTime time, RunObserver& observer) {
+void XrApp::play_frame(const Scene& scene, XrTime time, double t, RunObserver& observer) {
     if (!colliders_) {
         colliders_.emplace(scene, collider_functions_, instance_.get(), session_.get(),
                            stage_.get(), time);
     }
-    const double t = frame_time_s(frame);
     // Before the hands: locating them steps the physics, which must see this frame's targets.
     colliders_->follow_paths(time, t);
     const double step_us = trackers_->locate(stage_.get(), time, hands_);
@@ -159,8 +160,6 @@ void XrApp::play_frame(const Scene& scene, int frame, XrTime time, RunObserver& 
 ScenePlayed XrApp::play(const Scene& scene) {
     const XrInstance instance = instance_.get();
     const XrSession session = session_.get();
-    // As many frames as the physics-only runner plays.
-    const int frames = scene_frame_count(scene.duration_s);
     RunObserver observer(scene, options_.drive);
     TouchLog touches(scene);
     // The previous scene's colliders go; this one's are declared at its first frame.
@@ -169,6 +168,12 @@ ScenePlayed XrApp::play(const Scene& scene) {
     if (graphics_) graphics_->show(scene);
     ScenePlayed played;
     int frame = 0;
+    // Scene time comes from display times, never frame counts, so a scene lasts its duration
+    // at any display rate: the first frame shown is one display period in, as in the
+    // physics-only runner, and the scene is over once a frame reaches its duration.
+    std::optional<XrTime> scene_start;
+    double scene_t = 0.0;
+    double display_hz = kFrameRateHz;
     // Since when no scene frame was played: before the session runs, and after the last.
     auto idle_since = std::chrono::steady_clock::now();
     while (poll_events()) {
@@ -183,7 +188,9 @@ ScenePlayed XrApp::play(const Scene& scene) {
                 break;
             }
         }
-        const bool playing = running_ && !exit_requested_ && (options_.live || frame < frames);
+        const bool playing =
+            running_ && !exit_requested_ &&
+            (options_.live || frame == 0 || !scene_over(scene_t, scene.duration_s));
         if (!playing && (!options_.live || exit_requested_) &&
             std::chrono::steady_clock::now() - idle_since > kStateChangeTimeout) {
             throw std::runtime_error(frame == 0 && !exit_requested_
@@ -205,7 +212,17 @@ ScenePlayed XrApp::play(const Scene& scene) {
         begin.type = XR_TYPE_FRAME_BEGIN_INFO;
         xr_check(instance, xrBeginFrame(session, &begin), "xrBeginFrame");
         if (playing) {
-            play_frame(scene, ++frame, state.predictedDisplayTime, observer);
+            if (!scene_start) {
+                const XrDuration period = state.predictedDisplayPeriod > 0
+                                              ? state.predictedDisplayPeriod
+                                              : kFramePeriodNs;
+                scene_start = state.predictedDisplayTime - period;
+                // To the millihertz: a period in whole nanoseconds is not exactly 1/rate.
+                display_hz = std::round(1e12 / static_cast<double>(period)) * 1e-3;
+            }
+            scene_t = clock_seconds(state.predictedDisplayTime - *scene_start);
+            ++frame;
+            play_frame(scene, state.predictedDisplayTime, scene_t, observer);
             idle_since = std::chrono::steady_clock::now();
         }
         // After the scene the last state played is shown again: nothing steps.
@@ -226,12 +243,14 @@ ScenePlayed XrApp::play(const Scene& scene) {
         end.layerCount = layer != nullptr ? 1 : 0;
         end.layers = &layer;
         xr_check(instance, xrEndFrame(session, &end), "xrEndFrame");
-        if (!options_.live && frame == frames && !exit_requested_) {
+        if (!options_.live && frame > 0 && scene_over(scene_t, scene.duration_s) &&
+            !exit_requested_) {
             xr_check(instance, xrRequestExitSession(session), "xrRequestExitSession");
             exit_requested_ = true;
         }
     }
     played.result = observer.result();
+    played.result.display_hz = display_hz;
     if (graphics_) {
         played.rendering = {{"frame_ms_median", quantile(graphics_->frame_ms(), 0.5)},
                             {"touches", touches.to_json()}};

@@ -56,8 +56,8 @@ class XrApp {
   private:
     // Handles every queued event; false once the session is over.
     bool poll_events();
-    // Scene frame `frame` (1, 2, ...) of `scene`, displayed at `time`.
-    void play_frame(const Scene& scene, int frame, XrTime time, RunObserver& observer);
+    // The frame of `scene` at scene time `t`, displayed at `time`.
+    void play_frame(const Scene& scene, XrTime time, double t, RunObserver& observer);
 
     AppOptions options_;
     // Declared parents first: members are destroyed in reverse order.

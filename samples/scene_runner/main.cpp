@@ -14,12 +14,22 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: physhand-scene SCENE.json [--drive NAME] [--substeps N] [--seed S] [--json]\n"
-    "                      [--no-gating] [--no-sleeping]\n"
-    "  --json  print the result as one JSON object (default: one summary line)\n";
+    "                      [--no-gating] [--no-sleeping] [--display-hz HZ]\n"
+    "                      [--frame-jitter-ms MS]\n"
+    "  --json             print the result as one JSON object (default: one summary line)\n"
+    "  --display-hz       frames shown at HZ, 20 to 240 (default 90)\n"
+    "  --frame-jitter-ms  each frame shown up to MS early or late (seeded)\n";
 
 int usage_error(const std::string& message) {
     std::cerr << "physhand-scene: " << message << "\n" << kUsage;
     return 2;
+}
+
+bool parse_double(std::string_view text, double& out) {
+    char* end = nullptr;
+    const std::string s(text);
+    out = std::strtod(s.c_str(), &end);
+    return !s.empty() && end == s.c_str() + s.size();
 }
 
 bool parse_int(std::string_view text, long long& out) {
@@ -58,6 +68,12 @@ int main(int argc, char** argv) {
             if (!parse_int(value(), n) || n < 0)
                 return usage_error("--seed needs a whole number >= 0");
             options.seed = static_cast<std::uint64_t>(n);
+        } else if (arg == "--display-hz") {
+            if (!parse_double(value(), options.display.rate_hz))
+                return usage_error("--display-hz needs a number of Hz");
+        } else if (arg == "--frame-jitter-ms") {
+            if (!parse_double(value(), options.display.jitter_ms))
+                return usage_error("--frame-jitter-ms needs a number of milliseconds");
         } else if (arg == "-h" || arg == "--help") {
             std::cout << kUsage;
             return 0;
@@ -70,6 +86,11 @@ int main(int argc, char** argv) {
         }
     }
     if (scene_path.empty()) return usage_error("no scene file");
+    try {
+        physhand::check_display_timing(options.display);
+    } catch (const std::invalid_argument& e) {
+        return usage_error(e.what());
+    }
 
     try {
         const physhand::Scene scene = physhand::load_scene(scene_path);

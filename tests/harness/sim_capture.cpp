@@ -21,11 +21,6 @@ namespace {
 
 constexpr std::int64_t kDefaultEvery = 30;
 
-// The scene frame shown at a display time: frame 1 at kFirstDisplayTime.
-std::int64_t scene_frame(XrTime display_time) {
-    return std::max<std::int64_t>((display_time - kFirstDisplayTime) / kFramePeriod + 1, 0);
-}
-
 }  // namespace
 
 void write_png(const std::filesystem::path& path, const Rgba8Image& image) {
@@ -81,7 +76,7 @@ void capture_frame(Runtime& rt, XrSession session, const XrFrameEndInfo& info) {
     // The last frame: the first one ended after the session began to stop, whether at the
     // end of the scene or on request.
     bool last = data.stop_queued && !data.last_frame_captured;
-    std::int64_t frame = scene_frame(info.displayTime);
+    const std::int64_t frame = instance.display.frame_slot(info.displayTime);
     if (frame % instance.capture->every != 0 && !last) return;
     data.last_frame_captured |= last;
     std::vector<Rgba8Image> views;

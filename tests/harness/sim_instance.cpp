@@ -88,6 +88,19 @@ std::optional<std::int64_t> whole_number_env(const char* name, std::int64_t min)
     return std::nullopt;
 }
 
+std::optional<double> decimal_env(const char* name, double min, double max) {
+    const char* text = std::getenv(name);
+    if (text == nullptr || *text == '\0') return std::nullopt;
+    char* end = nullptr;
+    errno = 0;
+    const double x = std::strtod(text, &end);
+    if (*end == '\0' && errno == 0 && x >= min && x <= max) return x;
+    std::fprintf(stderr,
+                 "physhand simulated runtime: %s=%s is not a number from %g to %g; ignored\n", name,
+                 text, min, max);
+    return std::nullopt;
+}
+
 XrResult xrEnumerateInstanceExtensionProperties(const char* layerName,
                                                 uint32_t propertyCapacityInput,
                                                 uint32_t* propertyCountOutput,

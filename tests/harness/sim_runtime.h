@@ -45,16 +45,35 @@ inline constexpr XrSpaceLocationFlags kLocatedFlags =
 inline constexpr XrSpaceVelocityFlags kVelocityFlags =
     XR_SPACE_VELOCITY_LINEAR_VALID_BIT | XR_SPACE_VELOCITY_ANGULAR_VALID_BIT;
 
-// Virtual clock: frame n (counted from 0 per instance) is displayed at
-// kFirstDisplayTime + n * kFramePeriod. Nothing sleeps, so runs are deterministic.
-inline constexpr XrTime kFramePeriod = kFramePeriodNs;      // 1/90 s, physics/frame_clock.h
-inline constexpr XrTime kFirstDisplayTime = 1'000'000'000;  // any positive time will do
+// Virtual clock: scene time 0 is kSceneStart, a whole number of 90 Hz periods (as any
+// XrTime origin may be), and the first displayed frame is scene frame 1, as in the headless
+// runner (physics/scene_run.cpp), so both play the very same ghosts. Nothing sleeps, so
+// runs are deterministic.
+inline constexpr XrTime kSceneStart = 90 * kFramePeriodNs;
 
-// Scene time in seconds of a display time. The first displayed frame is scene frame 1, as
-// in the headless runner (physics/scene_run.cpp), so both play the very same ghosts.
+// Scene time in seconds of an XrTime.
 inline double scene_time(XrTime time) {
-    return clock_seconds(time - (kFirstDisplayTime - kFramePeriod));
+    return clock_seconds(time - kSceneStart);
 }
+
+// How the virtual display shows frames, from the environment: PHYSHAND_SIM_DISPLAY_HZ
+// (20-240, default 90), PHYSHAND_SIM_FRAME_JITTER_MS (each frame early or late by up to
+// this, uniformly, under a third of a period; seeded by PHYSHAND_SIM_FRAME_JITTER_SEED)
+// and PHYSHAND_SIM_DROP_EVERY (every Nth frame is dropped: the next waited frame is shown
+// a period later; N >= 2). A value out of range is reported on stderr and ignored.
+struct DisplayClock {
+    std::int64_t period_ns = kFramePeriodNs;
+    std::int64_t jitter_ns = 0;
+    std::uint64_t jitter_seed = 0;
+    std::int64_t drop_every = 0;  // 0: no frame dropped
+
+    static DisplayClock from_environment();
+    // The display time of the `waited`-th waited frame (from 0). The first is on time:
+    // slot n is shown at kSceneStart + (n + 1) * period_ns, then moved by its jitter.
+    XrTime display_time(std::int64_t waited) const;
+    // The frame slot (from 1) nearest a display time, dropped slots counted.
+    std::int64_t frame_slot(XrTime display_time) const;
+};
 
 // ---- handles ----------------------------------------------------------------------------
 
@@ -153,7 +172,8 @@ struct InstanceData {
     // their own.
     std::optional<PlayedScene> scene;
     std::deque<StateChange> events;  // delivered by xrPollEvent, oldest first
-    std::int64_t frames_waited = 0;  // the virtual clock (see kFirstDisplayTime)
+    DisplayClock display = DisplayClock::from_environment();
+    std::int64_t frames_waited = 0;  // frames waited on `display`
     std::vector<std::string> paths;  // XrPath n names paths[n - 1]
     std::map<std::string, XrPath, std::less<>> path_ids;
 };
@@ -342,6 +362,8 @@ const char* structure_type_name(XrStructureType type);  // nullptr when unknown
 // The environment variable `name` as a whole number of at least `min`; nullopt when it is
 // unset or empty, and when it is anything else, which is reported on stderr as ignored.
 std::optional<std::int64_t> whole_number_env(const char* name, std::int64_t min);
+// The same for a decimal number from `min` to `max`.
+std::optional<double> decimal_env(const char* name, double min, double max);
 // sim_paths.cpp
 bool path_exists(const InstanceData& instance, XrPath path);
 // sim_session.cpp

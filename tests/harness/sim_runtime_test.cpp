@@ -5,6 +5,7 @@
 #include <dlfcn.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -77,6 +78,20 @@ class SimRuntimeTest : public SimRuntimeFixture {
         out.velocities.jointVelocities = out.joint_velocities.data();
         return function<PFN_xrLocateHandJointsEXT>("xrLocateHandJointsEXT")(tracker, &info,
                                                                             &out.locations);
+    }
+
+    // The display times of `count` whole frames, and the period the last predicted.
+    static std::vector<XrTime> display_times(XrSession session, int count, XrDuration* period) {
+        std::vector<XrTime> times;
+        for (int n = 0; n < count; ++n) {
+            XrFrameState state;
+            EXPECT_EQ(wait_frame(session, &state), XR_SUCCESS);
+            EXPECT_EQ(xrBeginFrame(session, nullptr), XR_SUCCESS);
+            EXPECT_EQ(end_frame(session, state.predictedDisplayTime), XR_SUCCESS);
+            *period = state.predictedDisplayPeriod;
+            times.push_back(state.predictedDisplayTime);
+        }
+        return times;
     }
 };
 
@@ -280,6 +295,67 @@ TEST_F(SimRuntimeTest, FrameLoopAdvancesExactlyOnePeriod) {
     end_info.layerCount = 0;
     EXPECT_EQ(xrEndFrame(running, &end_info), XR_SUCCESS);
     unsetenv("PHYSHAND_SIM_REJECT_LAYERS_OVER");
+}
+
+TEST_F(SimRuntimeTest, DisplayRateJitterAndDroppedFramesComeFromTheEnvironment) {
+    setenv("PHYSHAND_SIM_DISPLAY_HZ", "144", 1);
+    setenv("PHYSHAND_SIM_FRAME_JITTER_MS", "1.5", 1);
+    setenv("PHYSHAND_SIM_DROP_EVERY", "4", 1);
+    ASSERT_EQ(create_instance(), XR_SUCCESS);
+    XrDuration period = 0;
+    const std::vector<XrTime> times = display_times(focused_session(), 60, &period);
+    EXPECT_EQ(period, physhand::frame_period_ns(144.0));
+    int dropped = 0;
+    for (std::size_t n = 1; n < times.size(); ++n) {
+        const XrDuration gap = times[n] - times[n - 1];
+        EXPECT_GE(gap, period - 3'000'000) << n;
+        EXPECT_LE(gap, 2 * period + 3'000'000) << n;
+        dropped += gap > 3 * period / 2 + 3'000'000 / 2 ? 1 : 0;
+        // On its slot's time, give or take the jitter, and not always on time.
+        const double slots = static_cast<double>(times[n] - times[0]) / static_cast<double>(period);
+        EXPECT_LE(std::abs(slots - std::round(slots)) * static_cast<double>(period), 1.5e6) << n;
+    }
+    EXPECT_GE(dropped, 15);  // one frame in four: a slot of every 4 is skipped
+    EXPECT_LE(dropped, 20);
+    std::vector<XrDuration> gaps;
+    for (std::size_t n = 1; n < times.size(); ++n) gaps.push_back(times[n] - times[n - 1]);
+    std::sort(gaps.begin(), gaps.end());
+    EXPECT_LT(gaps.front(), period - 500'000);  // jittered: some frames come early
+    destroy_instance();
+
+    // The same environment gives the same times; values out of range are ignored.
+    ASSERT_EQ(create_instance(), XR_SUCCESS);
+    EXPECT_EQ(display_times(focused_session(), 60, &period), times);
+    destroy_instance();
+    setenv("PHYSHAND_SIM_DISPLAY_HZ", "500", 1);
+    setenv("PHYSHAND_SIM_FRAME_JITTER_MS", "-1", 1);
+    setenv("PHYSHAND_SIM_DROP_EVERY", "1", 1);
+    ASSERT_EQ(create_instance(), XR_SUCCESS);
+    const std::vector<XrTime> plain = display_times(focused_session(), 5, &period);
+    EXPECT_EQ(period, kPeriod);
+    for (std::size_t n = 1; n < plain.size(); ++n) EXPECT_EQ(plain[n] - plain[n - 1], kPeriod);
+    unsetenv("PHYSHAND_SIM_DISPLAY_HZ");
+    unsetenv("PHYSHAND_SIM_FRAME_JITTER_MS");
+    unsetenv("PHYSHAND_SIM_DROP_EVERY");
+}
+
+TEST_F(SimRuntimeTest, ASceneLastsItsDurationAtAnyDisplayRate) {
+    setenv("PHYSHAND_SIM_DISPLAY_HZ", "20", 1);
+    ASSERT_EQ(create_instance(), XR_SUCCESS);
+    unsetenv("PHYSHAND_SIM_DISPLAY_HZ");
+    XrSession running = focused_session();
+    XrTime t0 = 0, last = 0;
+    int frames = 0;
+    bool stopping = false;
+    for (; frames < 100 && !stopping; ++frames) {
+        last = frame(running);
+        if (frames == 0) t0 = last;
+        while (auto state = poll_state()) stopping |= *state == XR_SESSION_STATE_STOPPING;
+    }
+    EXPECT_TRUE(stopping);
+    // 0.5 s at 20 Hz: frames at 0.05 .. 0.55 s, the last the first past the duration.
+    EXPECT_EQ(frames, 11);
+    EXPECT_NEAR(physhand::clock_seconds(last - t0) + 0.05, 0.55, 1e-6);
 }
 
 TEST_F(SimRuntimeTest, ReferenceSpacesLocate) {

@@ -8,7 +8,7 @@ namespace {
 
 // The display time of the latest waited frame; the first frame's before any.
 XrTime now(const InstanceData& instance) {
-    return kFirstDisplayTime + std::max<std::int64_t>(instance.frames_waited - 1, 0) * kFramePeriod;
+    return instance.display.display_time(std::max<std::int64_t>(instance.frames_waited - 1, 0));
 }
 
 void queue_state(InstanceData& instance, XrSession handle, SessionData& session,
@@ -170,10 +170,10 @@ XrResult xrWaitFrame(XrSession session, const XrFrameWaitInfo* frameWaitInfo,
         if (data->frame_waited) return XR_ERROR_CALL_ORDER_INVALID;
         data->frame_waited = true;
         InstanceData& instance = *rt.instances.find(data->instance);
-        XrTime display_time = kFirstDisplayTime + instance.frames_waited * kFramePeriod;
+        const XrTime display_time = instance.display.display_time(instance.frames_waited);
         ++instance.frames_waited;
         frameState->predictedDisplayTime = display_time;
-        frameState->predictedDisplayPeriod = kFramePeriod;
+        frameState->predictedDisplayPeriod = instance.display.period_ns;
         frameState->shouldRender =
             data->state == XR_SESSION_STATE_VISIBLE || data->state == XR_SESSION_STATE_FOCUSED;
         if (instance.scene && scene_time(display_time) > instance.scene->duration_s) {

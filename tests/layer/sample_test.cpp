@@ -44,10 +44,12 @@ std::string quoted(const std::string& text) {
 
 // Runs both tools on `scene` (the sample headless) with the same `options`; expects both to
 // succeed and returns their results, physics first.
+// `physics_options`, if given, go to the physics runner alone.
 std::pair<nlohmann::json, nlohmann::json> run_both(const std::string& scene,
-                                                   const std::string& options) {
-    const Output physics =
-        run_command(quoted(PHYSHAND_SCENE_EXE) + " " + quoted(scene) + " " + options + " --json");
+                                                   const std::string& options,
+                                                   const std::string& physics_options = "") {
+    const Output physics = run_command(quoted(PHYSHAND_SCENE_EXE) + " " + quoted(scene) + " " +
+                                       options + " " + physics_options + " --json");
     EXPECT_EQ(physics.status, 0) << physics.text;
     // The sample plays the scene it is given: no PHYSHAND_SIM_SCENE of ours.
     const Output layer = run_command(quoted(PHYSHAND_SAMPLE_EXE) + " --headless " + quoted(scene) +
@@ -113,6 +115,54 @@ TEST_F(SampleApp, DriveAndSubstepsOptionsMatchThePhysicsRunner) {
     expect_same_run(expected, got);
     EXPECT_EQ(got.at("drive"), "implicit");
     EXPECT_EQ(got.at("substeps"), 3);
+}
+
+// The simulated runtime's display at another rate, with jitter, or dropping frames: the
+// sample's scene clock follows the display times, the layer steps the same physics frames as
+// the runner shown at those times, and no frame repeats the last one's pose.
+TEST_F(SampleApp, EveryDisplayRateMatchesThePhysicsRunner) {
+    struct Timing {
+        const char* rate_hz;
+        const char* jitter_ms;
+    };
+    for (const Timing timing : {Timing{"72", "0"}, Timing{"144", "0"}, Timing{"120", "2"}}) {
+        SCOPED_TRACE(std::string(timing.rate_hz) + " Hz, jitter " + timing.jitter_ms + " ms");
+        env_.set("PHYSHAND_SIM_DISPLAY_HZ", timing.rate_hz);
+        env_.set("PHYSHAND_SIM_FRAME_JITTER_MS", timing.jitter_ms);
+        const auto [expected, got] = run_both(kLiftHold, "",
+                                              std::string("--display-hz ") + timing.rate_hz +
+                                                  " --frame-jitter-ms " + timing.jitter_ms);
+        expect_same_run(expected, got);
+        EXPECT_EQ(got.value("display_hz", 0.0), std::stod(timing.rate_hz));
+        EXPECT_EQ(got.value("repeated_pose_frames", -1), 0);
+        EXPECT_EQ(got.value("frames", 0), expected.value("frames", -1));
+    }
+}
+
+TEST_F(SampleApp, DroppedFramesAndSlowDisplaysKeepTheScenesDuration) {
+    env_.set("PHYSHAND_SIM_DROP_EVERY", "3");
+    const auto [every_frame, dropped] = run_both(kLiftHold, "");
+    EXPECT_TRUE(dropped.value("success", false));
+    EXPECT_EQ(dropped.value("repeated_pose_frames", -1), 0);
+    // Two frames of three shown, over the same 9 s.
+    EXPECT_NEAR(dropped.value("frames", 0), every_frame.value("frames", 0) * 2 / 3, 2);
+    env_.unset("PHYSHAND_SIM_DROP_EVERY");
+    env_.set("PHYSHAND_SIM_DISPLAY_HZ", "20");
+    const auto [expected, got] = run_both(kLiftHold, "", "--display-hz 20");
+    expect_same_run(expected, got);
+    EXPECT_EQ(got.value("frames", 0), 180);  // 9 s
+}
+
+TEST_F(SampleApp, ThePhysicsRunnerRejectsDisplayTimingOutOfRange) {
+    for (const char* option : {"--display-hz 500", "--display-hz 19", "--display-hz x",
+                               "--frame-jitter-ms 4", "--frame-jitter-ms -1"}) {
+        const Output out = run_command(quoted(PHYSHAND_SCENE_EXE) + " " + quoted(kLiftHold) + " " +
+                                       option + " 2>&1");
+        EXPECT_EQ(WEXITSTATUS(out.status), 2) << option;
+        const bool rate = std::string(option).starts_with("--display-hz");
+        EXPECT_NE(out.text.find(rate ? "display" : "jitter"), std::string::npos)
+            << option << ": " << out.text;
+    }
 }
 
 }  // namespace

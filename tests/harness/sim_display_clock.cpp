@@ -1,0 +1,41 @@
+// The virtual display's timing: its rate, each frame's jitter and the frames it drops.
+
+#include "sim_runtime.h"
+
+namespace physhand::sim {
+namespace {
+
+constexpr double kMinRateHz = 20.0;
+constexpr double kMaxRateHz = 240.0;
+
+}  // namespace
+
+DisplayClock DisplayClock::from_environment() {
+    DisplayClock clock;
+    if (const std::optional<double> rate =
+            decimal_env("PHYSHAND_SIM_DISPLAY_HZ", kMinRateHz, kMaxRateHz)) {
+        clock.period_ns = frame_period_ns(*rate);
+    }
+    const double max_jitter_ms = static_cast<double>(clock.period_ns) * 1e-6 / 3.0;
+    if (const std::optional<double> jitter =
+            decimal_env("PHYSHAND_SIM_FRAME_JITTER_MS", 0.0, max_jitter_ms)) {
+        clock.jitter_ns = std::llround(*jitter * 1e6);
+    }
+    clock.jitter_seed = static_cast<std::uint64_t>(
+        whole_number_env("PHYSHAND_SIM_FRAME_JITTER_SEED", 0).value_or(0));
+    clock.drop_every = whole_number_env("PHYSHAND_SIM_DROP_EVERY", 2).value_or(0);
+    return clock;
+}
+
+XrTime DisplayClock::display_time(std::int64_t waited) const {
+    const std::int64_t slot = drop_every == 0 ? waited : waited + waited / (drop_every - 1);
+    return kSceneStart + (slot + 1) * period_ns + frame_jitter_ns(slot + 1, jitter_ns, jitter_seed);
+}
+
+std::int64_t DisplayClock::frame_slot(XrTime display_time) const {
+    const double periods =
+        static_cast<double>(display_time - kSceneStart) / static_cast<double>(period_ns);
+    return std::max<std::int64_t>(std::llround(periods), 0);
+}
+
+}  // namespace physhand::sim
