@@ -2,11 +2,13 @@
 #include <openxr/physhand_physical_hands.h>
 
 #include <atomic>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "dispatch.h"
+#include "frame_clock.h"
 #include "layer_log.h"
 #include "sessions.h"
 #include "xr_util.h"
@@ -205,7 +207,12 @@ XRAPI_ATTR XrResult XRAPI_CALL SetPhysicalColliderPosePHYSHAND(
                 dynamic ? space.orientation * to_vec3(poseInfo->linearVelocity) : Vec3::Zero(),
                 dynamic ? space.orientation * to_vec3(poseInfo->angularVelocity) : Vec3::Zero());
         } else {
-            done = simulation.set_kinematic_target(record.handle, target);
+            // Timed on the simulation's clock once it runs, so the collider moves evenly
+            // through the physics frames up to the time the app gave.
+            const std::optional<XrTime>& epoch = locked.state->epoch;
+            done = epoch ? simulation.set_kinematic_target(record.handle, target,
+                                                           clock_seconds(poseInfo->time - *epoch))
+                         : simulation.set_kinematic_target(record.handle, target);
         }
         return done ? XR_SUCCESS : XR_ERROR_RUNTIME_FAILURE;
     });

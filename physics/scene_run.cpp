@@ -69,7 +69,8 @@ RunResult run_scene(const Scene& input, const SimulationSettings& settings,
             clock_seconds(f * period_ns + frame_jitter_ns(f, jitter_ns, display.jitter_seed));
         for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
             if (!scene.colliders[i].path.empty()) {
-                sim.set_kinematic_target(handles[i], round_to_float(scene.colliders[i].pose_at(t)));
+                sim.set_kinematic_target(handles[i], round_to_float(scene.colliders[i].pose_at(t)),
+                                         t);
             }
         }
         // As a runtime reports them: in floats, at any time asked for.

@@ -137,18 +137,37 @@ ColliderHandle Simulation::add_collider(const Collider& collider) {
     return world_->add_collider(collider);
 }
 bool Simulation::remove_collider(ColliderHandle handle) {
+    kinematic_legs_.erase(handle);
     return world_->remove_collider(handle);
 }
 bool Simulation::has_collider(ColliderHandle handle) const {
     return world_->has_collider(handle);
 }
 bool Simulation::set_kinematic_target(ColliderHandle handle, const Pose& pose) {
-    return is_finite(pose) && world_->set_kinematic_target(handle, pose);
+    if (!is_finite(pose) || !world_->set_kinematic_target(handle, pose)) return false;
+    kinematic_legs_.erase(handle);
+    return true;
+}
+bool Simulation::set_kinematic_target(ColliderHandle handle, const Pose& pose, double time_s) {
+    if (!is_finite(pose) || !std::isfinite(time_s) || !world_->is_kinematic(handle)) return false;
+    if (!started_ || time_s <= time_s_ + kSameTimeS) return set_kinematic_target(handle, pose);
+    kinematic_legs_[handle] = {world_->body_state(handle)->pose, pose, time_s_, time_s};
+    return true;
+}
+void Simulation::move_kinematic_legs(double frame_time_s) {
+    for (auto it = kinematic_legs_.begin(); it != kinematic_legs_.end();) {
+        const KinematicLeg& leg = it->second;
+        const bool arrives = frame_time_s >= leg.to_t - kSameTimeS;
+        const double s = arrives ? 1.0 : (frame_time_s - leg.from_t) / (leg.to_t - leg.from_t);
+        world_->set_kinematic_target(it->first, interpolate(leg.from, leg.to, s));
+        it = arrives ? kinematic_legs_.erase(it) : std::next(it);
+    }
 }
 bool Simulation::teleport(ColliderHandle handle, const Pose& pose, const Vec3& linear_velocity,
                           const Vec3& angular_velocity) {
     if (!is_finite(pose) || !is_finite(linear_velocity) || !is_finite(angular_velocity))
         return false;
+    kinematic_legs_.erase(handle);
     return world_->teleport(handle, pose, linear_velocity, angular_velocity);
 }
 std::optional<BodyState> Simulation::body_state(ColliderHandle handle) const {
@@ -328,6 +347,7 @@ void Simulation::step_sampling(double time_s, const GhostSource& ghosts_at) {
     for (++frame; frame <= last_frame; ++frame) {
         tick_ = (frame - 1) * substeps;
         time_s_ = static_cast<double>(tick_) / rate;
+        move_kinematic_legs(frame_time(frame));
         const std::array<HandPose, 2> ghosts = ghosts_at(frame_time(frame));
         for (HandSide side : kHandSides) {
             update_hand_gate(*hands_[static_cast<int>(side)], ghosts[static_cast<int>(side)],

@@ -89,8 +89,13 @@ class Simulation {
     ColliderHandle add_collider(const Collider& collider);
     bool remove_collider(ColliderHandle handle);
     bool has_collider(ColliderHandle handle) const;
-    // Kinematic colliders: where it should be at the end of the next step.
+    // Kinematic colliders: where it should be at the end of the next physics frame.
     bool set_kinematic_target(ColliderHandle handle, const Pose& pose);
+    // Where it should be at `time_s` (the clock of step_sampling): each physics frame up to
+    // then moves it to its place on the straight way there from where it is now, so it moves
+    // evenly whichever display rate sets its targets. A time not after the last physics frame
+    // is reached at the next.
+    bool set_kinematic_target(ColliderHandle handle, const Pose& pose, double time_s);
     // Any collider: placed now, with the given velocities (dynamic only), woken up.
     bool teleport(ColliderHandle handle, const Pose& pose, const Vec3& linear_velocity,
                   const Vec3& angular_velocity);
@@ -155,6 +160,8 @@ class Simulation {
     // in whole nanoseconds, so that a frame's ghosts are sampled at the very time a display
     // at that rate would ask for.
     std::int64_t frame_at_or_before(double time_s, bool& on_grid) const;
+    // Moves every kinematic collider with a timed target to its place at `frame_time_s`.
+    void move_kinematic_legs(double frame_time_s);
     // What is shown `ahead_s` after the last physics frame, when the ghost is `ghost_now`.
     void show_hand(HandSlot& slot, double ahead_s, const HandPose& ghost_now) const;
 
@@ -162,6 +169,12 @@ class Simulation {
     std::unique_ptr<World> world_;
     std::array<std::unique_ptr<HandSlot>, 2> hands_;
     std::vector<ContactInfo> contacts_;
+    // A kinematic collider on its way to a timed target, from where it was at from_t.
+    struct KinematicLeg {
+        Pose from, to;
+        double from_t = 0.0, to_t = 0.0;
+    };
+    std::map<ColliderHandle, KinematicLeg> kinematic_legs_;
     double time_s_ = 0.0;
     std::int64_t tick_ = 0;                 // the last physics frame's end, in substeps
     double shown_time_ = 0.0;               // the latest time asked for

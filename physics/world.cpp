@@ -168,6 +168,11 @@ bool World::remove_collider(ColliderHandle handle) {
     return true;
 }
 
+bool World::is_kinematic(ColliderHandle handle) const {
+    const auto it = colliders_.find(handle);
+    return it != colliders_.end() && it->second->collider.motion == Motion::Kinematic;
+}
+
 bool World::set_kinematic_target(ColliderHandle handle, const Pose& pose) {
     Entry* e = find(handle);
     if (!e || e->collider.motion != Motion::Kinematic) return false;

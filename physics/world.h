@@ -49,6 +49,7 @@ class World {
     ColliderHandle add_collider(const Collider& collider);
     bool remove_collider(ColliderHandle handle);
     bool has_collider(ColliderHandle handle) const { return colliders_.count(handle) != 0; }
+    bool is_kinematic(ColliderHandle handle) const;
     bool set_kinematic_target(ColliderHandle handle, const Pose& pose);
     bool teleport(ColliderHandle handle, const Pose& pose, const Vec3& linear_velocity,
                   const Vec3& angular_velocity);
