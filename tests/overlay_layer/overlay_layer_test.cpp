@@ -74,7 +74,9 @@ std::array<double, 2> project(const XrView& view, const XrVector3f& point) {
 class OverlayLayerTest : public ::testing::Test {
   protected:
     void SetUp() override {
-        const std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+        std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+        // One directory, also for a parameterised test's "Name/Param", so TearDown removes it.
+        std::replace(name.begin(), name.end(), '/', '_');
         dir_ = fs::temp_directory_path() / ("physhand_OverlayLayerTest_" + name);
         fs::remove_all(dir_);
         fs::create_directories(dir_ / "capture");

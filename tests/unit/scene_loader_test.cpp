@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "scene.h"
@@ -100,14 +101,25 @@ std::string error_of(const json& scene, const fs::path& base_dir = {}) {
     return error_of_text(scene.dump(), base_dir);
 }
 
+// The tests' directories, removed when the test program ends.
+struct TestDirs {
+    std::vector<fs::path> made;
+    ~TestDirs() {
+        std::error_code ignored;
+        for (const fs::path& dir : made) fs::remove_all(dir, ignored);
+    }
+};
+
 // A fresh directory for the running test.
 fs::path test_dir() {
+    static TestDirs dirs;
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     std::string name = std::string(info->test_suite_name()) + "_" + info->name();
     std::replace(name.begin(), name.end(), '/', '_');
     const fs::path dir = fs::path(::testing::TempDir()) / ("physhand_scene_loader_" + name);
     fs::remove_all(dir);
     fs::create_directories(dir);
+    dirs.made.push_back(dir);
     return dir;
 }
 
