@@ -35,8 +35,8 @@ std::vector<const char*> extensions(bool rendered) {
             rendered ? XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME : XR_MND_HEADLESS_EXTENSION_NAME};
 }
 
-// Throws unless the loader offers every extension the app needs.
-void check_extensions(const std::vector<const char*>& wanted) {
+// What the loader offers: the runtime's extensions and the layers'.
+std::vector<XrExtensionProperties> offered_extensions() {
     std::uint32_t count = 0;
     xr_check(XR_NULL_HANDLE, xrEnumerateInstanceExtensionProperties(nullptr, 0, &count, nullptr),
              "xrEnumerateInstanceExtensionProperties");
@@ -46,11 +46,19 @@ void check_extensions(const std::vector<const char*>& wanted) {
     xr_check(XR_NULL_HANDLE,
              xrEnumerateInstanceExtensionProperties(nullptr, count, &count, properties.data()),
              "xrEnumerateInstanceExtensionProperties");
+    return properties;
+}
+
+bool is_offered(const std::vector<XrExtensionProperties>& offered, const char* name) {
+    return std::any_of(offered.begin(), offered.end(),
+                       [&](const auto& p) { return std::strcmp(p.extensionName, name) == 0; });
+}
+
+// Throws unless the loader offers every extension the app needs.
+void check_extensions(const std::vector<const char*>& wanted,
+                      const std::vector<XrExtensionProperties>& offered) {
     for (const char* name : wanted) {
-        const bool offered = std::any_of(properties.begin(), properties.end(), [&](const auto& p) {
-            return std::strcmp(p.extensionName, name) == 0;
-        });
-        if (offered) continue;
+        if (is_offered(offered, name)) continue;
         if (name == wanted[0]) {
             throw std::runtime_error(
                 "the physhand layer is not active (no " XR_PHYSHAND_PHYSICAL_HANDS_EXTENSION_NAME
@@ -64,8 +72,13 @@ void check_extensions(const std::vector<const char*>& wanted) {
 }  // namespace
 
 XrApp::XrApp(const AppOptions& options) : options_(options) {
-    const std::vector<const char*> enabled = extensions(options.rendered);
-    check_extensions(enabled);
+    const std::vector<XrExtensionProperties> offered = offered_extensions();
+    std::vector<const char*> enabled = extensions(options.rendered);
+    check_extensions(enabled, offered);
+    // A headless session may have no frame loop (Monado's): time then comes from here.
+    const bool timespec =
+        !options.rendered && is_offered(offered, XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME);
+    if (timespec) enabled.push_back(XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME);
     XrInstanceCreateInfo instance_info{};
     instance_info.type = XR_TYPE_INSTANCE_CREATE_INFO;
     std::strncpy(instance_info.applicationInfo.applicationName, "physhand-sample",
@@ -77,6 +90,7 @@ XrApp::XrApp(const AppOptions& options) : options_(options) {
     XrInstance instance = XR_NULL_HANDLE;
     xr_check(XR_NULL_HANDLE, xrCreateInstance(&instance_info, &instance), "xrCreateInstance");
     instance_ = XrHandle<XrInstance>(instance, xrDestroyInstance);
+    clock_.emplace(instance, timespec);
 
     XrSystemGetInfo system_info{};
     system_info.type = XR_TYPE_SYSTEM_GET_INFO;
@@ -157,6 +171,50 @@ void XrApp::play_frame(const Scene& scene, XrTime time, double t, RunObserver& o
     observer.add_frame(t, step_us, hands_, colliders_->locate(time));
 }
 
+bool XrApp::begin_frame(const XrFrameState& state) {
+    if (!options_.rendered && state.predictedDisplayTime <= 0) return false;
+    XrFrameBeginInfo begin{};
+    begin.type = XR_TYPE_FRAME_BEGIN_INFO;
+    const XrResult result = xrBeginFrame(session_.get(), &begin);
+    if (!options_.rendered && result == XR_ERROR_CALL_ORDER_INVALID) return false;
+    xr_check(instance_.get(), result, "xrBeginFrame");
+    return true;
+}
+
+XrTime XrApp::unlooped_frame_time() {
+    const auto now = std::chrono::steady_clock::now();
+    if (next_frame_ > now) std::this_thread::sleep_until(next_frame_);
+    next_frame_ = std::max(next_frame_, now) + std::chrono::nanoseconds(kFramePeriodNs);
+    const std::optional<XrTime> time = clock_->now();
+    if (!time) {
+        throw std::runtime_error(
+            "the runtime's headless session has no frame loop, and no "
+            "XR_KHR_convert_timespec_time to tell the time by");
+    }
+    return *time;
+}
+
+void XrApp::end_frame(const XrFrameState& state, bool playing, int frame, TouchLog& touches) {
+    // After the scene the last state played is shown again: nothing steps.
+    const XrCompositionLayerBaseHeader* layer = nullptr;
+    if (graphics_ && colliders_ && state.shouldRender == XR_TRUE) {
+        layer = graphics_->render(stage_.get(), state.predictedDisplayTime, colliders_->located(),
+                                  hands_, options_.feedback);
+        if (playing && layer != nullptr) {
+            touches.add_frame(frame, colliders_->located(), [this](const Vec3& point) {
+                return graphics_->view0_position(point);
+            });
+        }
+    }
+    XrFrameEndInfo end{};
+    end.type = XR_TYPE_FRAME_END_INFO;
+    end.displayTime = state.predictedDisplayTime;
+    end.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
+    end.layerCount = layer != nullptr ? 1 : 0;
+    end.layers = &layer;
+    xr_check(instance_.get(), xrEndFrame(session_.get(), &end), "xrEndFrame");
+}
+
 ScenePlayed XrApp::play(const Scene& scene) {
     const XrInstance instance = instance_.get();
     const XrSession session = session_.get();
@@ -208,41 +266,23 @@ ScenePlayed XrApp::play(const Scene& scene) {
         XrFrameState state{};
         state.type = XR_TYPE_FRAME_STATE;
         xr_check(instance, xrWaitFrame(session, &wait, &state), "xrWaitFrame");
-        XrFrameBeginInfo begin{};
-        begin.type = XR_TYPE_FRAME_BEGIN_INFO;
-        xr_check(instance, xrBeginFrame(session, &begin), "xrBeginFrame");
+        const bool begun = begin_frame(state);
+        const XrTime time = begun ? state.predictedDisplayTime : unlooped_frame_time();
         if (playing) {
             if (!scene_start) {
                 const XrDuration period = state.predictedDisplayPeriod > 0
                                               ? state.predictedDisplayPeriod
                                               : kFramePeriodNs;
-                scene_start = state.predictedDisplayTime - period;
+                scene_start = time - period;
                 // To the millihertz: a period in whole nanoseconds is not exactly 1/rate.
                 display_hz = std::round(1e12 / static_cast<double>(period)) * 1e-3;
             }
-            scene_t = clock_seconds(state.predictedDisplayTime - *scene_start);
+            scene_t = clock_seconds(time - *scene_start);
             ++frame;
-            play_frame(scene, state.predictedDisplayTime, scene_t, observer);
+            play_frame(scene, time, scene_t, observer);
             idle_since = std::chrono::steady_clock::now();
         }
-        // After the scene the last state played is shown again: nothing steps.
-        const XrCompositionLayerBaseHeader* layer = nullptr;
-        if (graphics_ && colliders_ && state.shouldRender == XR_TRUE) {
-            layer = graphics_->render(stage_.get(), state.predictedDisplayTime,
-                                      colliders_->located(), hands_, options_.feedback);
-            if (playing && layer != nullptr) {
-                touches.add_frame(frame, colliders_->located(), [this](const Vec3& point) {
-                    return graphics_->view0_position(point);
-                });
-            }
-        }
-        XrFrameEndInfo end{};
-        end.type = XR_TYPE_FRAME_END_INFO;
-        end.displayTime = state.predictedDisplayTime;
-        end.environmentBlendMode = XR_ENVIRONMENT_BLEND_MODE_OPAQUE;
-        end.layerCount = layer != nullptr ? 1 : 0;
-        end.layers = &layer;
-        xr_check(instance, xrEndFrame(session, &end), "xrEndFrame");
+        if (begun) end_frame(state, playing, frame, touches);
         if (!options_.live && frame > 0 && scene_over(scene_t, scene.duration_s) &&
             !exit_requested_) {
             xr_check(instance, xrRequestExitSession(session), "xrRequestExitSession");

@@ -2,18 +2,21 @@
 
 #include <openxr/openxr.h>
 
+#include <chrono>
 #include <nlohmann/json.hpp>
 #include <optional>
 
 #include "drive.h"
 #include "hand_trackers.h"
 #include "run_observer.h"
+#include "runtime_clock.h"
 #include "scene.h"
 #include "scene_colliders.h"
 #include "scene_drawing.h"
 #include "scene_graphics.h"
 #include "scene_run.h"
 #include "stdin_commands.h"
+#include "touch_log.h"
 #include "vulkan_device.h"
 #include "xr_handle.h"
 
@@ -56,6 +59,13 @@ class XrApp {
   private:
     // Handles every queued event; false once the session is over.
     bool poll_events();
+    // Begins the waited frame; false for a headless session without a frame loop, which
+    // gives no display time or refuses to begin (Monado's XR_MND_headless).
+    bool begin_frame(const XrFrameState& state);
+    // Without a frame loop the app paces itself at 90 Hz and reads the runtime's clock.
+    XrTime unlooped_frame_time();
+    // Draws (when rendered) and ends a begun frame.
+    void end_frame(const XrFrameState& state, bool playing, int frame, TouchLog& touches);
     // The frame of `scene` at scene time `t`, displayed at `time`.
     void play_frame(const Scene& scene, XrTime time, double t, RunObserver& observer);
 
@@ -65,8 +75,10 @@ class XrApp {
     std::optional<VulkanDevice> vulkan_;  // outlives the session bound to it
     XrHandle<XrSession> session_;
     XrHandle<XrSpace> stage_;
-    std::optional<SceneGraphics> graphics_;  // rendered mode
-    std::optional<HandTrackers> trackers_;   // made once the session exists
+    std::optional<SceneGraphics> graphics_;               // rendered mode
+    std::optional<HandTrackers> trackers_;                // made once the session exists
+    std::optional<RuntimeClock> clock_;                   // for sessions without a frame loop
+    std::chrono::steady_clock::time_point next_frame_{};  // paces frames without a frame loop
     ColliderFunctions collider_functions_;
     std::optional<SceneColliders> colliders_;  // declared at a scene's first frame
     std::array<LocatedHand, 2> hands_;         // as located at the latest frame played

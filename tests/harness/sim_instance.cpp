@@ -24,6 +24,8 @@ constexpr auto kExtensions = std::to_array<XrExtensionProperties>({
      XR_KHR_vulkan_enable2_SPEC_VERSION},
     {XR_TYPE_EXTENSION_PROPERTIES, nullptr, XR_KHR_VULKAN_ENABLE_EXTENSION_NAME,
      XR_KHR_vulkan_enable_SPEC_VERSION},
+    {XR_TYPE_EXTENSION_PROPERTIES, nullptr, XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME,
+     XR_KHR_convert_timespec_time_SPEC_VERSION},
 });
 
 constexpr const char* kRuntimeName = "physhand simulated runtime";
@@ -140,6 +142,7 @@ XrResult xrCreateInstance(const XrInstanceCreateInfo* createInfo, XrInstance* in
             data.headless |= extension == XR_MND_HEADLESS_EXTENSION_NAME;
             data.vulkan_enable |= extension == XR_KHR_VULKAN_ENABLE_EXTENSION_NAME;
             data.vulkan_enable2 |= extension == XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME;
+            data.convert_timespec |= extension == XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME;
         }
         data.scene = load_played_scene();
         data.capture = capture_settings();

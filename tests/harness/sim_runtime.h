@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <deque>
 #include <exception>
 #include <filesystem>
@@ -61,11 +62,17 @@ inline double scene_time(XrTime time) {
 // this, uniformly, under a third of a period; seeded by PHYSHAND_SIM_FRAME_JITTER_SEED)
 // and PHYSHAND_SIM_DROP_EVERY (every Nth frame is dropped: the next waited frame is shown
 // a period later; N >= 2). A value out of range is reported on stderr and ignored.
+// PHYSHAND_SIM_HEADLESS_FRAME_LOOP=0 gives headless sessions no frame loop, as Monado's:
+// xrWaitFrame succeeds with no display time (0) and counts as no wait, so xrBeginFrame
+// answers XR_ERROR_CALL_ORDER_INVALID; time then comes from XR_KHR_convert_timespec_time,
+// on which XrTime is kSceneStart plus the CLOCK_MONOTONIC time since the instance was made.
 struct DisplayClock {
     std::int64_t period_ns = kFramePeriodNs;
     std::int64_t jitter_ns = 0;
     std::uint64_t jitter_seed = 0;
     std::int64_t drop_every = 0;  // 0: no frame dropped
+    bool headless_frame_loop = true;
+    std::int64_t monotonic_origin_ns = 0;  // CLOCK_MONOTONIC at kSceneStart
 
     static DisplayClock from_environment();
     // The display time of the `waited`-th waited frame (from 0). The first is on time:
@@ -73,6 +80,11 @@ struct DisplayClock {
     XrTime display_time(std::int64_t waited) const;
     // The frame slot (from 1) nearest a display time, dropped slots counted.
     std::int64_t frame_slot(XrTime display_time) const;
+    // The XrTime of a CLOCK_MONOTONIC time in nanoseconds, and back.
+    XrTime from_monotonic(std::int64_t ns) const { return kSceneStart + ns - monotonic_origin_ns; }
+    std::int64_t to_monotonic(XrTime time) const {
+        return time - kSceneStart + monotonic_origin_ns;
+    }
 };
 
 // ---- handles ----------------------------------------------------------------------------
@@ -162,10 +174,11 @@ struct CaptureSettings {
 };
 
 struct InstanceData {
-    bool hand_tracking = false;   // XR_EXT_hand_tracking enabled
-    bool headless = false;        // XR_MND_headless enabled
-    bool vulkan_enable = false;   // XR_KHR_vulkan_enable enabled
-    bool vulkan_enable2 = false;  // XR_KHR_vulkan_enable2 enabled
+    bool hand_tracking = false;     // XR_EXT_hand_tracking enabled
+    bool headless = false;          // XR_MND_headless enabled
+    bool vulkan_enable = false;     // XR_KHR_vulkan_enable enabled
+    bool vulkan_enable2 = false;    // XR_KHR_vulkan_enable2 enabled
+    bool convert_timespec = false;  // XR_KHR_convert_timespec_time enabled
     VulkanSystem vulkan;
     std::optional<CaptureSettings> capture;
     // Empty when there is no usable scene: hands are never active and sessions never end on
@@ -461,6 +474,10 @@ PHYSHAND_SIM_API xrWaitFrame(XrSession session, const XrFrameWaitInfo* frameWait
                              XrFrameState* frameState);
 PHYSHAND_SIM_API xrBeginFrame(XrSession session, const XrFrameBeginInfo* frameBeginInfo);
 PHYSHAND_SIM_API xrEndFrame(XrSession session, const XrFrameEndInfo* frameEndInfo);
+PHYSHAND_SIM_API xrConvertTimespecTimeToTimeKHR(XrInstance instance,
+                                                const struct timespec* timespecTime, XrTime* time);
+PHYSHAND_SIM_API xrConvertTimeToTimespecTimeKHR(XrInstance instance, XrTime time,
+                                                struct timespec* timespecTime);
 
 // sim_spaces.cpp
 PHYSHAND_SIM_API xrEnumerateReferenceSpaces(XrSession session, uint32_t spaceCapacityInput,

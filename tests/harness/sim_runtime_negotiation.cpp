@@ -11,7 +11,14 @@ namespace physhand::sim {
 namespace {
 
 // What a function needs: an instance, none, or an instance with its extension enabled.
-enum class Needs { Instance, NoInstance, HandTracking, VulkanEnable, VulkanEnable2 };
+enum class Needs {
+    Instance,
+    NoInstance,
+    HandTracking,
+    VulkanEnable,
+    VulkanEnable2,
+    ConvertTimespec
+};
 
 struct Entry {
     std::string_view name;
@@ -92,6 +99,8 @@ const auto kEntries = std::to_array<Entry>({
     PHYSHAND_SIM_ENTRY(xrGetVulkanDeviceExtensionsKHR, Needs::VulkanEnable),
     PHYSHAND_SIM_ENTRY(xrGetVulkanGraphicsDeviceKHR, Needs::VulkanEnable),
     PHYSHAND_SIM_ENTRY(xrGetVulkanGraphicsRequirementsKHR, Needs::VulkanEnable),
+    PHYSHAND_SIM_ENTRY(xrConvertTimespecTimeToTimeKHR, Needs::ConvertTimespec),
+    PHYSHAND_SIM_ENTRY(xrConvertTimeToTimespecTimeKHR, Needs::ConvertTimespec),
 });
 
 #undef PHYSHAND_SIM_ENTRY
@@ -122,7 +131,8 @@ XrResult xrGetInstanceProcAddr(XrInstance instance, const char* name,
             if (entry == nullptr) return XR_ERROR_FUNCTION_UNSUPPORTED;
             bool enabled = (entry->needs != Needs::HandTracking || data->hand_tracking) &&
                            (entry->needs != Needs::VulkanEnable || data->vulkan_enable) &&
-                           (entry->needs != Needs::VulkanEnable2 || data->vulkan_enable2);
+                           (entry->needs != Needs::VulkanEnable2 || data->vulkan_enable2) &&
+                           (entry->needs != Needs::ConvertTimespec || data->convert_timespec);
             if (!enabled) return XR_ERROR_FUNCTION_UNSUPPORTED;
         }
         *function = entry->function;

@@ -3,12 +3,15 @@
 // ones are tested in sim_vulkan_test.cpp.
 
 #include <dlfcn.h>
+#include <openxr/openxr_platform.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <numbers>
+#include <thread>
 
 #include "loader_negotiation.h"
 #include "scene.h"
@@ -356,6 +359,71 @@ TEST_F(SimRuntimeTest, ASceneLastsItsDurationAtAnyDisplayRate) {
     // 0.5 s at 20 Hz: frames at 0.05 .. 0.55 s, the last the first past the duration.
     EXPECT_EQ(frames, 11);
     EXPECT_NEAR(physhand::clock_seconds(last - t0) + 0.05, 0.55, 1e-6);
+}
+
+// PHYSHAND_SIM_HEADLESS_FRAME_LOOP=0: a headless session as Monado's, whose xrWaitFrame
+// gives no display time and counts as no wait; the time comes from the monotonic clock.
+TEST_F(SimRuntimeTest, HeadlessSessionsWithoutAFrameLoopTellTimeByTheMonotonicClock) {
+    setenv("PHYSHAND_SIM_HEADLESS_FRAME_LOOP", "0", 1);
+    const auto created = std::chrono::steady_clock::now();
+    ASSERT_EQ(create_instance({XR_EXT_HAND_TRACKING_EXTENSION_NAME, XR_MND_HEADLESS_EXTENSION_NAME,
+                               XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME}),
+              XR_SUCCESS);
+    unsetenv("PHYSHAND_SIM_HEADLESS_FRAME_LOOP");
+    XrSession running = focused_session();
+    for (int n = 0; n < 3; ++n) {
+        XrFrameState state;
+        ASSERT_EQ(wait_frame(running, &state), XR_SUCCESS);
+        EXPECT_EQ(state.predictedDisplayTime, 0);
+        EXPECT_EQ(state.shouldRender, XR_FALSE);
+        EXPECT_EQ(xrBeginFrame(running, nullptr), XR_ERROR_CALL_ORDER_INVALID);
+        EXPECT_EQ(end_frame(running, 1), XR_ERROR_CALL_ORDER_INVALID);
+    }
+
+    auto to_time = function<PFN_xrConvertTimespecTimeToTimeKHR>("xrConvertTimespecTimeToTimeKHR");
+    auto to_timespec =
+        function<PFN_xrConvertTimeToTimespecTimeKHR>("xrConvertTimeToTimespecTimeKHR");
+    timespec now{};
+    ASSERT_EQ(clock_gettime(CLOCK_MONOTONIC, &now), 0);
+    XrTime time = 0;
+    ASSERT_EQ(to_time(instance_, &now, &time), XR_SUCCESS);
+    EXPECT_GT(time, 0);
+    timespec back{};
+    ASSERT_EQ(to_timespec(instance_, time, &back), XR_SUCCESS);
+    EXPECT_EQ(back.tv_sec, now.tv_sec);
+    EXPECT_EQ(back.tv_nsec, now.tv_nsec);
+    timespec bad = now;
+    bad.tv_nsec = 1'000'000'000;
+    EXPECT_EQ(to_time(instance_, &bad, &time), XR_ERROR_VALIDATION_FAILURE);
+    EXPECT_EQ(to_time(instance_, nullptr, &time), XR_ERROR_VALIDATION_FAILURE);
+    EXPECT_EQ(to_timespec(instance_, 0, &back), XR_ERROR_TIME_INVALID);
+
+    // The hands are located at such times, and the session stops once the scene is over.
+    XrSpace stage = reference_space(running, XR_REFERENCE_SPACE_TYPE_STAGE);
+    HandJoints joints;
+    ASSERT_EQ(locate_joints(hand_tracker(running, XR_HAND_RIGHT_EXT), stage, time, joints),
+              XR_SUCCESS);
+    EXPECT_EQ(joints.locations.isActive, XR_TRUE);
+    bool stopping = false;
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    while (!stopping && std::chrono::steady_clock::now() < give_up) {
+        XrFrameState state;
+        ASSERT_EQ(wait_frame(running, &state), XR_SUCCESS);
+        while (auto polled = poll_state()) stopping |= *polled == XR_SESSION_STATE_STOPPING;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    EXPECT_TRUE(stopping);
+    // The scene's time ran with the monotonic clock from the instance's creation.
+    EXPECT_GT(std::chrono::steady_clock::now() - created,
+              std::chrono::duration<double>(kDuration - kPeriod * 1e-9));
+}
+
+TEST_F(SimRuntimeTest, TheTimespecClockNeedsItsExtension) {
+    ASSERT_EQ(create_instance(), XR_SUCCESS);
+    PFN_xrVoidFunction fn = nullptr;
+    EXPECT_EQ(xrGetInstanceProcAddr(instance_, "xrConvertTimespecTimeToTimeKHR", &fn),
+              XR_ERROR_FUNCTION_UNSUPPORTED);
+    EXPECT_EQ(fn, nullptr);
 }
 
 TEST_F(SimRuntimeTest, ReferenceSpacesLocate) {

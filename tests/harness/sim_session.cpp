@@ -165,11 +165,26 @@ XrResult xrWaitFrame(XrSession session, const XrFrameWaitInfo* frameWaitInfo,
             return XR_ERROR_VALIDATION_FAILURE;
         }
         if (!data->running) return XR_ERROR_SESSION_NOT_RUNNING;
+        InstanceData& instance = *rt.instances.find(data->instance);
+        if (data->vulkan == nullptr && !instance.display.headless_frame_loop) {
+            // No frame loop: no display time, and no frame to begin. The scene ends by the
+            // monotonic clock.
+            frameState->predictedDisplayTime = 0;
+            frameState->predictedDisplayPeriod = 0;
+            frameState->shouldRender = XR_FALSE;
+            timespec now{};
+            clock_gettime(CLOCK_MONOTONIC, &now);
+            const XrTime time =
+                instance.display.from_monotonic(now.tv_sec * 1'000'000'000LL + now.tv_nsec);
+            if (instance.scene && scene_time(time) > instance.scene->duration_s) {
+                queue_stopping(instance, session, *data);
+            }
+            return XR_SUCCESS;
+        }
         // A real runtime would block this second wait until xrBeginFrame; with nothing to
         // wait for, blocking would deadlock a single-threaded application instead.
         if (data->frame_waited) return XR_ERROR_CALL_ORDER_INVALID;
         data->frame_waited = true;
-        InstanceData& instance = *rt.instances.find(data->instance);
         const XrTime display_time = instance.display.display_time(instance.frames_waited);
         ++instance.frames_waited;
         frameState->predictedDisplayTime = display_time;

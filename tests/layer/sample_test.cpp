@@ -1,6 +1,7 @@
 // The sample app, headless, through loader -> layer -> simulated runtime, against the
 // physics-only runner on the same scene: the same outcome and the very same final bodies.
 
+#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <sstream>
@@ -151,6 +152,25 @@ TEST_F(SampleApp, DroppedFramesAndSlowDisplaysKeepTheScenesDuration) {
     const auto [expected, got] = run_both(kLiftHold, "", "--display-hz 20");
     expect_same_run(expected, got);
     EXPECT_EQ(got.value("frames", 0), 180);  // 9 s
+}
+
+// A runtime whose headless sessions have no frame loop (Monado's): the sample calls no frame
+// functions, paces itself at 90 Hz and tells the time by XR_KHR_convert_timespec_time, so
+// the scene plays in real time, to its end.
+TEST_F(SampleApp, HeadlessWithoutAFrameLoopPlaysInRealTime) {
+    env_.set("PHYSHAND_SIM_HEADLESS_FRAME_LOOP", "0");
+    const auto start = std::chrono::steady_clock::now();
+    const Output layer =
+        run_command(quoted(PHYSHAND_SAMPLE_EXE) + " --headless " + quoted(kLiftHold) + " --json");
+    const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
+    ASSERT_EQ(layer.status, 0) << layer.text;
+    const nlohmann::json got = result_of(layer);
+    ASSERT_TRUE(got.is_object()) << layer.text;
+    EXPECT_TRUE(got.value("success", false)) << layer.text;
+    EXPECT_EQ(got.value("repeated_pose_frames", -1), 0);
+    EXPECT_EQ(got.value("nonfinite_count", -1), 0);
+    EXPECT_GE(took.count(), 9.0);  // lift_hold lasts 9 s
+    EXPECT_GT(got.value("frames", 0), 700);
 }
 
 TEST_F(SampleApp, ThePhysicsRunnerRejectsDisplayTimingOutOfRange) {
