@@ -145,6 +145,48 @@ TEST(RunMetrics, TrackingErrorSkipsJointsInRecentContact) {
     EXPECT_DOUBLE_EQ(s.max_requested_speed, 25.0);
 }
 
+// A hand that returns the previous frame's pose while its ghost moves judders: counted unless
+// the ghost stood still or the hand touched something.
+TEST(RunMetrics, RepeatedPoseFramesCountAHandThatDidNotMoveWithItsGhost) {
+    RunMetrics m;
+    const HandPose start = pose_hand(HandSide::Right, Pose{}, HandArticulation{});
+    auto moved = [&](double x) {
+        HandPose hand = start;
+        for (Pose& joint : hand.joints) joint.position.x() += x;
+        return hand;
+    };
+    std::array<bool, kJointCount> none{}, touching{};
+    touching[index_of(Joint::IndexTip)] = true;
+    m.add_hand(0.00, HandSide::Right, moved(0.000), moved(0.000), none);
+    m.add_hand(0.01, HandSide::Right, moved(0.001), moved(0.001), none);
+    m.add_hand(0.02, HandSide::Right, moved(0.002), moved(0.001), none);      // repeated
+    m.add_hand(0.03, HandSide::Right, moved(0.003), moved(0.001), touching);  // touching
+    m.add_hand(0.04, HandSide::Right, moved(0.00305), moved(0.001), none);    // ghost still
+    m.add_hand(0.05, HandSide::Right, moved(0.004), moved(0.001), none);      // repeated
+    EXPECT_EQ(m.summary().repeated_pose_frames, 2);
+}
+
+// Jerk is the third derivative of the wrist's and fingertips' paths: a path x = j t^3 / 6
+// has jerk j, at any frame times.
+TEST(RunMetrics, JerkOfACubicPathIsItsThirdDerivative) {
+    RunMetrics m;
+    const HandPose start = pose_hand(HandSide::Right, Pose{}, HandArticulation{});
+    const std::array<bool, kJointCount> none{};
+    const double jerk = 50.0, ghost_jerk = 20.0;
+    for (const double t : {0.0, 0.011, 0.019, 0.031, 0.040, 0.056, 0.060}) {
+        HandPose ghost = start, physical = start;
+        for (std::size_t j = 0; j < kJointCount; ++j) {
+            ghost.joints[j].position.y() += ghost_jerk * t * t * t / 6.0;
+            physical.joints[j].position.z() += jerk * t * t * t / 6.0;
+        }
+        m.add_hand(t, HandSide::Right, ghost, physical, none);
+    }
+    const MetricsSummary s = m.summary();
+    EXPECT_NEAR(s.jerk_rms, jerk, 1e-3);
+    EXPECT_NEAR(s.ghost_jerk_rms, ghost_jerk, 1e-3);
+    EXPECT_EQ(s.repeated_pose_frames, 0);
+}
+
 // A body's speed 50 ms after its last contact over the ghost palm's speed then
 // (METRICS.md); only a release at throwing speed counts as a throw.
 TEST(RunMetrics, ReleaseSpeedRatioOfTheFastestThrow) {
