@@ -369,14 +369,19 @@ void Simulation::step_sampling(double time_s, const GhostSource& ghosts_at) {
     }
 }
 
-void Simulation::show_hand(HandSlot& slot, double ahead_s, const HandPose& ghost_now) const {
+void Simulation::show_hand(HandSlot& slot, double ahead_s, const HandPose& sample) const {
     slot.shown = slot.state;
     if (!(ahead_s > 0.0) || !slot.state.joints.active) return;
     // Clean tracking tells how a joint moved since the frame: a free joint moves as its
     // ghost did, a gated hand is its ghost. A joint in contact, or a noisy ghost, carries on
     // at the frame's velocities instead, so nothing is shown pressed into what stopped it and
-    // the noise the filter took out does not come back.
-    const bool ghost_moves = ghost_now.active && slot.tracked && slot.noise.passes_clean();
+    // the noise the filter took out does not come back; so does every joint when the sample
+    // is unusable or has jumped further than a hand moves (the next frame judges it).
+    HandPose ghost_now = sample;
+    const bool ghost_moves =
+        ghost_now.active && sanitise(ghost_now) && slot.tracked && slot.noise.passes_clean() &&
+        (ghost_now[Joint::Wrist].position - slot.ghost[Joint::Wrist].position).norm() <=
+            settings_.reseat_distance;
     for (std::size_t j = 0; j < kJointCount; ++j) {
         Pose& joint = slot.shown.joints.joints[j];
         if (ghost_moves && !slot.state.in_contact[j]) {

@@ -162,8 +162,9 @@ class Simulation {
     std::int64_t frame_at_or_before(double time_s, bool& on_grid) const;
     // Moves every kinematic collider with a timed target to its place at `frame_time_s`.
     void move_kinematic_legs(double frame_time_s);
-    // What is shown `ahead_s` after the last physics frame, when the ghost is `ghost_now`.
-    void show_hand(HandSlot& slot, double ahead_s, const HandPose& ghost_now) const;
+    // What is shown `ahead_s` after the last physics frame, when the runtime's sample of the
+    // ghost then is `sample`.
+    void show_hand(HandSlot& slot, double ahead_s, const HandPose& sample) const;
 
     SimulationSettings settings_;
     std::unique_ptr<World> world_;

@@ -88,6 +88,29 @@ TEST(DisplayRate, TheSameOrAnEarlierTimeChangesNothing) {
     }
 }
 
+// The sample at a display time between frames is the runtime's like any other: a NaN or a
+// jump across the room there shows the hand moved on at its own velocities, never the bad
+// sample.
+TEST(DisplayRate, ABadSampleBetweenFramesIsNotShown) {
+    for (const double height : {0.4, 0.06}) {  // gated and simulated
+        const auto clean = [&](double t) { return sweeping_hand(t, height); };
+        std::array<HandPose, 2> nan = clean(0.0), far = clean(0.0);
+        nan[1].joints[3].position.x() = NAN;
+        for (Pose& joint : far[1].joints) joint.position.x() += 2.0;
+        const double between = frame_time_s(30) + 0.004;
+        for (const auto& bad : {nan, far}) {
+            Simulation sim(SimulationSettings{}, Vec3(0, -9.81, 0));
+            sim.add_collider(static_box("table", Vec3(0, 0.725, -0.4), Vec3(0.4, 0.025, 0.3)));
+            for (int f = 1; f <= 30; ++f) sim.step_sampling(frame_time_s(f), clean);
+            const Vec3 at_frame = sim.hand(HandSide::Right).joints[Joint::Wrist].position;
+            sim.step_sampling(between, [&](double t) { return t == between ? bad : clean(t); });
+            const PhysicalHandState& shown = sim.hand(HandSide::Right);
+            for (const Pose& joint : shown.joints.joints) EXPECT_TRUE(is_finite(joint));
+            EXPECT_LT((shown.joints[Joint::Wrist].position - at_frame).norm(), 0.01) << height;
+        }
+    }
+}
+
 TEST(DisplayRate, AHitchIsSteppedFrameByFrameALongGapOnlyUpToMaxStep) {
     Simulation sim(SimulationSettings{}, Vec3(0, -9.81, 0));
     sim.add_collider(static_box("table", Vec3(0, 0.725, -0.4), Vec3(0.4, 0.025, 0.3)));
