@@ -30,6 +30,14 @@ inline std::int64_t frame_period_ns(double rate_hz) {
     return static_cast<std::int64_t>(1e9 / rate_hz);
 }
 
+// The display rates a run or the simulated runtime may show, and the most a frame may come
+// early or late at a rate: under a third of a period keeps frames in order.
+inline constexpr double kMinDisplayHz = 20.0;
+inline constexpr double kMaxDisplayHz = 240.0;
+inline double max_frame_jitter_ms(double rate_hz) {
+    return 1e3 / (3.0 * rate_hz);
+}
+
 // How early (-) or late (+) display frame `frame` (from 1) is shown: uniform within
 // +-jitter_ns, from the frame's number and `seed` alone (a splitmix64 hash), so any frame's
 // time can be worked out again and runs repeat. The first frame is on time. The headless

@@ -28,9 +28,9 @@ SimulationSettings settings_for(const RunOptions& options) {
 }
 
 void check_display_timing(const DisplayTiming& display) {
-    if (!(display.rate_hz >= 20.0 && display.rate_hz <= 240.0))
+    if (!(display.rate_hz >= kMinDisplayHz && display.rate_hz <= kMaxDisplayHz))
         throw std::invalid_argument("display rate must be from 20 to 240 Hz");
-    if (!(display.jitter_ms >= 0.0 && display.jitter_ms * 1e-3 < 1.0 / (3.0 * display.rate_hz)))
+    if (!(display.jitter_ms >= 0.0 && display.jitter_ms < max_frame_jitter_ms(display.rate_hz)))
         throw std::invalid_argument("frame jitter must be >= 0 and under a third of a frame");
 }
 

@@ -4,20 +4,14 @@
 #include "sim_runtime.h"
 
 namespace physhand::sim {
-namespace {
-
-constexpr double kMinRateHz = 20.0;
-constexpr double kMaxRateHz = 240.0;
-
-}  // namespace
 
 DisplayClock DisplayClock::from_environment() {
     DisplayClock clock;
     if (const std::optional<double> rate =
-            decimal_env("PHYSHAND_SIM_DISPLAY_HZ", kMinRateHz, kMaxRateHz)) {
+            decimal_env("PHYSHAND_SIM_DISPLAY_HZ", kMinDisplayHz, kMaxDisplayHz)) {
         clock.period_ns = frame_period_ns(*rate);
     }
-    const double max_jitter_ms = static_cast<double>(clock.period_ns) * 1e-6 / 3.0;
+    const double max_jitter_ms = max_frame_jitter_ms(1e9 / static_cast<double>(clock.period_ns));
     if (const std::optional<double> jitter =
             decimal_env("PHYSHAND_SIM_FRAME_JITTER_MS", 0.0, max_jitter_ms)) {
         clock.jitter_ns = std::llround(*jitter * 1e6);
