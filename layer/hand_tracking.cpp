@@ -131,13 +131,29 @@ class ChainSplice {
     XrBaseOutStructure* removed_ = nullptr;
 };
 
+// A call the layer answers in full: the 26 joints asked for (and their velocities, if),
+// nothing chained to the locate info (such as XR_EXT_hand_joints_motion_range, which changes
+// what the runtime reports in ways the physical hand does not model). Anything else gets the
+// runtime's answer alone, as the runtime gave it.
+bool is_default_locate(const XrHandJointsLocateInfoEXT& info,
+                       const XrHandJointLocationsEXT& locations,
+                       const XrHandJointVelocitiesEXT* velocities) {
+    return info.next == nullptr && locations.jointCount == XR_HAND_JOINT_COUNT_EXT &&
+           locations.jointLocations != nullptr &&
+           (velocities == nullptr || (velocities->jointCount == XR_HAND_JOINT_COUNT_EXT &&
+                                      velocities->jointVelocities != nullptr));
+}
+
 // The runtime's answer, as the ghost; the hand counts as not simulated until shown to be.
+// Another joint set's poses are not the ghost's joints, so they are not reported as such.
 void report_ghost(const XrHandJointLocationsEXT& locations,
                   XrHandJointsPhysicalStatePHYSHAND& physical) {
     physical.ghostIsActive = locations.isActive;
     physical.isSimulated = XR_FALSE;
+    const bool ghost_joints =
+        locations.jointCount == XR_HAND_JOINT_COUNT_EXT && locations.jointLocations != nullptr;
     for (std::size_t i = 0; i < kJointCount; ++i) {
-        if (physical.ghostPoses != nullptr)
+        if (physical.ghostPoses != nullptr && ghost_joints)
             physical.ghostPoses[i] = locations.jointLocations[i].pose;
         if (physical.inContact != nullptr) physical.inContact[i] = XR_FALSE;
         if (physical.springForce != nullptr) physical.springForce[i] = 0.0f;
@@ -231,10 +247,12 @@ XRAPI_ATTR XrResult XRAPI_CALL CreateHandTrackerEXT(XrSession session,
         // The runtime accepted createInfo, so it is valid.
         const HandSide side =
             createInfo->hand == XR_HAND_LEFT_EXT ? HandSide::Left : HandSide::Right;
+        const bool simulated = createInfo->handJointSet == XR_HAND_JOINT_SET_DEFAULT_EXT &&
+                               createInfo->next == nullptr;
         try {
-            add_tracker(*handTracker, {state, side});
+            add_tracker(*handTracker, {state, side, simulated});
             std::lock_guard lock(state->mutex);
-            state->trackers[side_index(side)].push_back(*handTracker);
+            if (simulated) state->trackers[side_index(side)].push_back(*handTracker);
         } catch (...) {
             remove_tracker(*handTracker);
             state->instance->next.DestroyHandTrackerEXT(*handTracker);
@@ -266,15 +284,7 @@ XRAPI_ATTR XrResult XRAPI_CALL LocateHandJointsEXT(XrHandTrackerEXT handTracker,
         if (!ref) return XR_ERROR_HANDLE_INVALID;
         if (locateInfo == nullptr || locations == nullptr ||
             locateInfo->type != XR_TYPE_HAND_JOINTS_LOCATE_INFO_EXT ||
-            locations->type != XR_TYPE_HAND_JOINT_LOCATIONS_EXT ||
-            locations->jointCount != XR_HAND_JOINT_COUNT_EXT ||
-            locations->jointLocations == nullptr) {
-            return XR_ERROR_VALIDATION_FAILURE;
-        }
-        auto* velocities = find_in_chain<XrHandJointVelocitiesEXT>(
-            locations->next, XR_TYPE_HAND_JOINT_VELOCITIES_EXT);
-        if (velocities != nullptr && (velocities->jointCount != XR_HAND_JOINT_COUNT_EXT ||
-                                      velocities->jointVelocities == nullptr)) {
+            locations->type != XR_TYPE_HAND_JOINT_LOCATIONS_EXT) {
             return XR_ERROR_VALIDATION_FAILURE;
         }
         SessionState& session = *ref->session;
@@ -293,6 +303,11 @@ XRAPI_ATTR XrResult XRAPI_CALL LocateHandJointsEXT(XrHandTrackerEXT handTracker,
         }
         if (XR_FAILED(result)) return result;
         if (physical != nullptr) report_ghost(*locations, *physical);
+        auto* velocities = find_in_chain<XrHandJointVelocitiesEXT>(
+            locations->next, XR_TYPE_HAND_JOINT_VELOCITIES_EXT);
+        if (!ref->simulated || !is_default_locate(*locateInfo, *locations, velocities)) {
+            return result;
+        }
 
         std::lock_guard lock(session.mutex);
         if (!session.alive || !session.simulation) return result;

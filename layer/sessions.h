@@ -118,6 +118,9 @@ std::shared_ptr<SessionState> remove_session(XrSession session);
 struct TrackerRef {
     std::shared_ptr<SessionState> session;
     HandSide side = HandSide::Left;
+    // False for a tracker of another joint set, or created with a structure the layer does not
+    // model chained to its create info: the runtime alone answers for it.
+    bool simulated = true;
 };
 std::optional<TrackerRef> find_tracker(XrHandTrackerEXT tracker);
 void add_tracker(XrHandTrackerEXT tracker, TrackerRef ref);

@@ -2,7 +2,9 @@
 // ghost hands the physics-only runner sees), expressed in the caller's base space.
 
 #include <Eigen/Geometry>
+#include <algorithm>
 
+#include "sim_joint_sets.h"
 #include "sim_runtime.h"
 
 namespace physhand::sim {
@@ -26,8 +28,39 @@ Vec3 angular_velocity(const Quat& from, const Quat& to, double dt) {
     return rotation.axis() * (rotation.angle() / dt);
 }
 
-bool has_joint_array(uint32_t count, const void* joints) {
-    return count == XR_HAND_JOINT_COUNT_EXT && joints != nullptr;
+// The elbow of the forearm joint set: this far behind the wrist (+Z points away from the
+// fingers), turned as the wrist is.
+constexpr double kForearmLength = 0.25;
+
+// How far apart thumb and index tips pinch fully, and stop pinching (XR_FB_hand_tracking_aim).
+constexpr double kPinchClosed = 0.01;
+constexpr double kPinchOpen = 0.06;
+
+// Joint i of a joint set: the 26 of the default set, then the elbow.
+Pose joint_in_set(const HandPose& hand, std::size_t i) {
+    if (i < kJointCount) return hand.joints[i];
+    return hand[Joint::Wrist] * Pose{Vec3(0, 0, kForearmLength), Quat::Identity()};
+}
+
+bool has_joint_array(uint32_t count, uint32_t expected, const void* joints) {
+    return count == expected && joints != nullptr;
+}
+
+// XR_FB_hand_tracking_aim: aimed along the index finger's first bone, pinching as the thumb
+// and index tips close.
+void report_aim(const HandPose& hand, bool located, const Pose& stage_to_base,
+                XrHandTrackingAimStateFB& aim) {
+    aim.status = 0;
+    aim.aimPose = to_xr(Pose{});
+    aim.pinchStrengthIndex = aim.pinchStrengthMiddle = aim.pinchStrengthRing =
+        aim.pinchStrengthLittle = 0.0f;
+    if (!located) return;
+    const double gap = (hand[Joint::ThumbTip].position - hand[Joint::IndexTip].position).norm();
+    const double pinch = std::clamp((kPinchOpen - gap) / (kPinchOpen - kPinchClosed), 0.0, 1.0);
+    aim.status = XR_HAND_TRACKING_AIM_COMPUTED_BIT_FB | XR_HAND_TRACKING_AIM_VALID_BIT_FB |
+                 (pinch >= 1.0 ? XR_HAND_TRACKING_AIM_INDEX_PINCHING_BIT_FB : 0);
+    aim.aimPose = to_xr(stage_to_base * hand[Joint::IndexProximal]);
+    aim.pinchStrengthIndex = static_cast<float>(pinch);
 }
 
 }  // namespace
@@ -36,8 +69,14 @@ XrResult xrCreateHandTrackerEXT(XrSession session, const XrHandTrackerCreateInfo
                                 XrHandTrackerEXT* handTracker) {
     return guarded([&](Runtime& rt) {
         if (rt.sessions.find(session) == nullptr) return XR_ERROR_HANDLE_INVALID;
-        if (!has_type(createInfo, XR_TYPE_HAND_TRACKER_CREATE_INFO_EXT) || handTracker == nullptr ||
-            createInfo->handJointSet != XR_HAND_JOINT_SET_DEFAULT_EXT) {
+        if (!has_type(createInfo, XR_TYPE_HAND_TRACKER_CREATE_INFO_EXT) || handTracker == nullptr) {
+            return XR_ERROR_VALIDATION_FAILURE;
+        }
+        const InstanceData& instance = *rt.instances.find(rt.sessions.find(session)->instance);
+        uint32_t joint_count = XR_HAND_JOINT_COUNT_EXT;
+        if (createInfo->handJointSet == kForearmJointSet && instance.forearm) {
+            joint_count = kForearmJointCount;
+        } else if (createInfo->handJointSet != XR_HAND_JOINT_SET_DEFAULT_EXT) {
             return XR_ERROR_VALIDATION_FAILURE;
         }
         HandSide side;
@@ -51,7 +90,7 @@ XrResult xrCreateHandTrackerEXT(XrSession session, const XrHandTrackerCreateInfo
             default:
                 return XR_ERROR_VALIDATION_FAILURE;
         }
-        *handTracker = rt.hand_trackers.add({session, side});
+        *handTracker = rt.hand_trackers.add({session, side, joint_count});
         return XR_SUCCESS;
     });
 }
@@ -80,9 +119,10 @@ XrResult xrLocateHandJointsEXT(XrHandTrackerEXT handTracker,
         if (locateInfo->time <= 0) return XR_ERROR_TIME_INVALID;
         auto* velocities = find_in_chain<XrHandJointVelocitiesEXT>(
             locations->next, XR_TYPE_HAND_JOINT_VELOCITIES_EXT);
-        if (!has_joint_array(locations->jointCount, locations->jointLocations) ||
+        const uint32_t count = tracker->joint_count;
+        if (!has_joint_array(locations->jointCount, count, locations->jointLocations) ||
             (velocities != nullptr &&
-             !has_joint_array(velocities->jointCount, velocities->jointVelocities))) {
+             !has_joint_array(velocities->jointCount, count, velocities->jointVelocities))) {
             return XR_ERROR_VALIDATION_FAILURE;
         }
 
@@ -96,23 +136,28 @@ XrResult xrLocateHandJointsEXT(XrHandTrackerEXT handTracker,
         const Pose stage_to_base = base_pose ? base_pose->inverse() : Pose{};
 
         locations->isActive = hand.active ? XR_TRUE : XR_FALSE;
-        for (std::size_t i = 0; i < kJointCount; ++i) {
+        for (std::size_t i = 0; i < count; ++i) {
+            const Pose joint = joint_in_set(hand, i);
+            const double radius = hand.radii[i < kJointCount ? i : index_of(Joint::Wrist)];
             XrHandJointLocationEXT& out = locations->jointLocations[i];
             out.locationFlags = located ? kLocatedFlags : 0;
-            out.pose = to_xr(located ? stage_to_base * hand.joints[i] : Pose{});
-            out.radius = located ? static_cast<float>(hand.radii[i]) : 0.0f;
+            out.pose = to_xr(located ? stage_to_base * joint : Pose{});
+            out.radius = located ? static_cast<float>(radius) : 0.0f;
         }
+        auto* aim = find_in_chain<XrHandTrackingAimStateFB>(locations->next,
+                                                            XR_TYPE_HAND_TRACKING_AIM_STATE_FB);
+        if (aim != nullptr && instance.hand_aim) report_aim(hand, located, stage_to_base, *aim);
         if (velocities == nullptr) return XR_SUCCESS;
 
         HandPose before;
         if (located) before = instance.scene->hands.ghost(tracker->side, t - kVelocityStep);
         const bool has_velocity = located && before.active;
-        for (std::size_t i = 0; i < kJointCount; ++i) {
+        for (std::size_t i = 0; i < count; ++i) {
             XrHandJointVelocityEXT& out = velocities->jointVelocities[i];
             Vec3 linear = Vec3::Zero();
             Vec3 angular = Vec3::Zero();
             if (has_velocity) {
-                const Pose &now = hand.joints[i], &then = before.joints[i];
+                const Pose now = joint_in_set(hand, i), then = joint_in_set(before, i);
                 linear = (now.position - then.position) / kVelocityStep;
                 angular = angular_velocity(then.orientation, now.orientation, kVelocityStep);
             }

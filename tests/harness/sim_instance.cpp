@@ -10,6 +10,7 @@
 #include <exception>
 #include <string_view>
 
+#include "sim_joint_sets.h"
 #include "sim_runtime.h"
 
 namespace physhand::sim {
@@ -26,6 +27,13 @@ constexpr auto kExtensions = std::to_array<XrExtensionProperties>({
      XR_KHR_vulkan_enable_SPEC_VERSION},
     {XR_TYPE_EXTENSION_PROPERTIES, nullptr, XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME,
      XR_KHR_convert_timespec_time_SPEC_VERSION},
+    {XR_TYPE_EXTENSION_PROPERTIES, nullptr, "XR_ULTRALEAP_hand_tracking_forearm",
+     1},  // kForearm...
+    {XR_TYPE_EXTENSION_PROPERTIES, nullptr, XR_FB_HAND_TRACKING_AIM_EXTENSION_NAME,
+     XR_FB_hand_tracking_aim_SPEC_VERSION},
+    // The scene's hands hold no controller, so conforming to one changes nothing.
+    {XR_TYPE_EXTENSION_PROPERTIES, nullptr, XR_EXT_HAND_JOINTS_MOTION_RANGE_EXTENSION_NAME,
+     XR_EXT_hand_joints_motion_range_SPEC_VERSION},
 });
 
 constexpr const char* kRuntimeName = "physhand simulated runtime";
@@ -143,6 +151,8 @@ XrResult xrCreateInstance(const XrInstanceCreateInfo* createInfo, XrInstance* in
             data.vulkan_enable |= extension == XR_KHR_VULKAN_ENABLE_EXTENSION_NAME;
             data.vulkan_enable2 |= extension == XR_KHR_VULKAN_ENABLE2_EXTENSION_NAME;
             data.convert_timespec |= extension == XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME;
+            data.forearm |= extension == kForearmExtensionName;
+            data.hand_aim |= extension == XR_FB_HAND_TRACKING_AIM_EXTENSION_NAME;
         }
         data.scene = load_played_scene();
         data.capture = capture_settings();

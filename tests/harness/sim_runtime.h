@@ -179,6 +179,8 @@ struct InstanceData {
     bool vulkan_enable = false;     // XR_KHR_vulkan_enable enabled
     bool vulkan_enable2 = false;    // XR_KHR_vulkan_enable2 enabled
     bool convert_timespec = false;  // XR_KHR_convert_timespec_time enabled
+    bool forearm = false;           // XR_ULTRALEAP_hand_tracking_forearm enabled
+    bool hand_aim = false;          // XR_FB_hand_tracking_aim enabled
     VulkanSystem vulkan;
     std::optional<CaptureSettings> capture;
     // Empty when there is no usable scene: hands are never active and sessions never end on
@@ -248,6 +250,7 @@ struct ActionData {
 struct HandTrackerData {
     XrSession session;
     HandSide side;
+    uint32_t joint_count = XR_HAND_JOINT_COUNT_EXT;  // of its joint set
 };
 
 struct Runtime {
