@@ -70,9 +70,9 @@ PhysicalHand::PhysicalHand(HandSide side, const DriveSettings& drive, const Hand
         for (std::size_t j = 0; j < kJointCount; ++j) {
             const Joint joint = static_cast<Joint>(j);
             const bool core = joint == Joint::Palm || joint == Joint::Wrist;
+            collision_radius_[j] = std::max(source.radii[j], kMinRadius);
             add(joint, Pose{}, {joint},
-                std::make_unique<btSphereShape>(
-                    static_cast<btScalar>(std::max(source.radii[j], kMinRadius))),
+                std::make_unique<btSphereShape>(static_cast<btScalar>(collision_radius_[j])),
                 core ? kPalmMass / 2 : kBoneMass);
         }
     } else {
@@ -93,10 +93,15 @@ PhysicalHand::PhysicalHand(HandSide side, const DriveSettings& drive, const Hand
                         std::max((hi.z() - lo.z()) / 2, kMinRadius));
         auto box = std::make_unique<btBoxShape>(to_bt(half));
         box->setMargin(0.001f);
+        const std::vector<Joint> on_palm = {Joint::Palm,
+                                            Joint::Wrist,
+                                            Joint::IndexMetacarpal,
+                                            Joint::MiddleMetacarpal,
+                                            Joint::RingMetacarpal,
+                                            Joint::LittleMetacarpal};
+        for (Joint j : on_palm) collision_radius_[index_of(j)] = thickness;
         add(Joint::Palm,
-            Pose{Vec3((lo.x() + hi.x()) / 2, 0, (lo.z() + hi.z()) / 2), Quat::Identity()},
-            {Joint::Palm, Joint::Wrist, Joint::IndexMetacarpal, Joint::MiddleMetacarpal,
-             Joint::RingMetacarpal, Joint::LittleMetacarpal},
+            Pose{Vec3((lo.x() + hi.x()) / 2, 0, (lo.z() + hi.z()) / 2), Quat::Identity()}, on_palm,
             std::move(box), kPalmMass);
 
         // A capsule per bone, from its anchor joint to the next; the last carries the tip.
@@ -111,6 +116,7 @@ PhysicalHand::PhysicalHand(HandSide side, const DriveSettings& drive, const Hand
                 const Quat along = Quat::FromTwoVectors(Vec3(0, 0, -1), local / length);
                 std::vector<Joint> carried = {a};
                 if (bone == 2) carried.push_back(b);
+                for (Joint j : carried) collision_radius_[index_of(j)] = radius;
                 add(a, Pose{local / 2, along}, carried,
                     std::make_unique<btCapsuleShapeZ>(static_cast<btScalar>(radius),
                                                       static_cast<btScalar>(length)),
@@ -254,13 +260,19 @@ Pose PhysicalHand::joint_on(const Body& b, Joint j, const HandPose& target) cons
 
 void PhysicalHand::read(const HandPose& target, PhysicalHandState& out) const {
     out.joints.active = target.active;
-    out.joints.radii = target.radii;
+    out.joints.radii = collision_radius_;
     out.max_joint_gap = 0.0;
     for (std::size_t j = 0; j < kJointCount; ++j) {
         const Joint joint_id = static_cast<Joint>(j);
         const Body& b = *bodies_[static_cast<std::size_t>(body_of_joint_[j])];
         const btRigidBody& r = *b.rigid;
-        const Pose joint = joint_on(b, joint_id, target);
+        Pose joint = joint_on(b, joint_id, target);
+        if (b.shape->getShapeType() == BOX_SHAPE_PROXYTYPE) {
+            const Pose body = body_pose(b, target);
+            Vec3 local = body.inverse() * joint.position;
+            local.y() = 0.0;
+            joint.position = body * local;
+        }
         out.joints.joints[j] = joint;
         const Vec3 w = from_bt(r.getAngularVelocity());
         out.angular_velocity[j] = w;

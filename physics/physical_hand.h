@@ -46,7 +46,11 @@ class PhysicalHand {
     void set_contact_response(bool enabled);
     bool contact_response() const { return contact_response_; }
 
-    // Physical joints for the current body poses, using `target` for carried offsets.
+    // Physical joints for the current body poses, using `target` for carried offsets. Each
+    // joint's radius is what its body collides with there (a finger's capsule, half the palm
+    // box's thickness), not the runtime's: a joint sphere drawn as returned never reaches
+    // further into what the hand rests on than the hand does. Joints the palm box carries lie
+    // on its mid-plane.
     void read(const HandPose& target, PhysicalHandState& out) const;
     // Which body a collision object is, or -1.
     int body_index(const btCollisionObject* object) const;
@@ -73,6 +77,7 @@ class PhysicalHand {
     DriveSettings drive_;
     std::vector<std::unique_ptr<Body>> bodies_;
     std::array<int, kJointCount> body_of_joint_{};
+    std::array<double, kJointCount> collision_radius_{};  // of the joint's body, at the joint
     World* world_ = nullptr;
     bool contact_response_ = true;
 };

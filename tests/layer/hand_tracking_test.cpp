@@ -220,6 +220,37 @@ TEST_F(HandTracking, HandIsBlockedByAStaticBox) {
     EXPECT_FALSE(flags & XR_PHYSICAL_COLLIDER_TOUCHED_BY_LEFT_BIT_PHYSHAND);
 }
 
+// Radii as returned are what collides: every joint's sphere, drawn where it is returned,
+// stays on the desk the hand rests on (the runtime's wrist is 18 mm round, the palm box it
+// lies in 19 mm thick). The ghost's are the runtime's own.
+TEST_F(HandTracking, ReturnedJointSpheresRestOnTheDeskNotInIt) {
+    use_scene(scene_with_hands({{"right", pressing_hand(0.1)}}));
+    ASSERT_EQ(create_instance(), XR_SUCCESS);
+    start_session();
+    frame();
+    create_desk();
+    const XrHandTrackerEXT right = hand_tracker(XR_HAND_RIGHT_EXT);
+    HandJoints hand;
+    double deepest = 0.0;
+    int simulated = 0;
+    for (int f = 0; f < frames_until(2.0); ++f) {
+        ASSERT_EQ(locate(right, stage_, frame(), hand), XR_SUCCESS);
+        if (!hand.physical.isSimulated) continue;  // far from the desk: the runtime's hand
+        ++simulated;
+        for (const XrHandJointLocationEXT& joint : hand.joints) {
+            const XrVector3f& p = joint.pose.position;
+            if (std::abs(p.x - kDeskCenter.x) > kDeskHalfExtents.x ||
+                std::abs(p.z - kDeskCenter.z) > kDeskHalfExtents.z) {
+                continue;
+            }
+            deepest = std::max(deepest, kDeskTop - (p.y - double(joint.radius)));
+        }
+    }
+    EXPECT_GT(simulated, frames_until(1.0));
+    EXPECT_LT(deepest, 0.001);
+    EXPECT_TRUE(hand.any_contact());
+}
+
 // Losing tracking briefly: the physical hand holds, valid but not tracked, stays finite,
 // and follows the ghost again afterwards.
 TEST_F(HandTracking, TrackingDropoutKeepsTheHandFiniteAndItRecovers) {
