@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 
 // Build-tree paths (tests/layer/CMakeLists.txt).
 const fs::path kBuildShare = PHYSHAND_BUILD_SHARE_DIR;
-const fs::path kExplicitLayerDir = kBuildShare / "openxr/1/api_layers/explicit.d";
+const fs::path kExplicitLayerDir = kBuildShare / "physhand/explicit";
 const fs::path kSimulatedRuntime = kBuildShare / "openxr/1/runtimes/physhand_simulated.json";
 // The folder of the core validation layer's manifest; empty when it is not installed.
 const std::string kCoreValidationDir = PHYSHAND_CORE_VALIDATION_LAYER_DIR;
