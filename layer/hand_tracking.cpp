@@ -208,7 +208,9 @@ void SessionState::advance(XrTime time) {
         // Physics frames fall on whole periods of the runtime's clock, so the same tracking
         // gives the same physics whatever the display rate and wherever its first frame falls.
         const std::int64_t period = frame_period_ns(simulation->settings().frame_rate_hz);
-        epoch = time - ((time % period) + period) % period;
+        const XrTime aligned = time - ((time % period) + period) % period;
+        // XrTime 0 is no time at all: a clock under a period from its origin starts on time.
+        epoch = aligned > 0 ? aligned : time;
     }
     advanced_to = time;
     // Seconds since the epoch: XrTime counts nanoseconds from an arbitrary origin, too large

@@ -1,5 +1,7 @@
 #include "layer_fixture.h"
 
+#include <openxr/openxr_platform.h>
+#include <time.h>  // the timespec of XR_KHR_convert_timespec_time
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,6 +13,8 @@
 #include <sstream>
 #include <system_error>
 #include <type_traits>
+
+#include "frame_clock.h"
 
 namespace physhand::layer_test {
 
@@ -264,11 +268,12 @@ const char* shape_name(XrPhysicalColliderShapePHYSHAND shape) {
 
 std::vector<const char*> LayerTest::all_extensions() {
     return {XR_EXT_HAND_TRACKING_EXTENSION_NAME, XR_MND_HEADLESS_EXTENSION_NAME,
-            XR_PHYSHAND_PHYSICAL_HANDS_EXTENSION_NAME};
+            XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME, XR_PHYSHAND_PHYSICAL_HANDS_EXTENSION_NAME};
 }
 
 std::vector<const char*> LayerTest::without_physhand() {
-    return {XR_EXT_HAND_TRACKING_EXTENSION_NAME, XR_MND_HEADLESS_EXTENSION_NAME};
+    return {XR_EXT_HAND_TRACKING_EXTENSION_NAME, XR_MND_HEADLESS_EXTENSION_NAME,
+            XR_KHR_CONVERT_TIMESPEC_TIME_EXTENSION_NAME};
 }
 
 void LayerTest::SetUp() {
@@ -457,6 +462,8 @@ void LayerTest::start_session() {
     local_ = reference_space(session_, XR_REFERENCE_SPACE_TYPE_LOCAL);
     // Until the first frame, extension calls use the first frame's time.
     display_time_ = 0;
+    no_frame_loop_ = false;
+    unlooped_frames_ = 0;
 }
 
 XrSession LayerTest::extra_session() {
@@ -500,7 +507,15 @@ XrSpace LayerTest::reference_space(XrSession session, XrReferenceSpaceType type,
 XrTime LayerTest::frame() {
     auto wait = xr<XrFrameWaitInfo>(XR_TYPE_FRAME_WAIT_INFO);
     auto state = xr<XrFrameState>(XR_TYPE_FRAME_STATE);
-    EXPECT_EQ(xrWaitFrame(session_, &wait, &state), XR_SUCCESS);
+    if (!no_frame_loop_) {
+        EXPECT_EQ(xrWaitFrame(session_, &wait, &state), XR_SUCCESS);
+        no_frame_loop_ = state.predictedDisplayTime == 0;
+    }
+    if (no_frame_loop_) {
+        poll_events();
+        display_time_ = unlooped_frame_time();
+        return display_time_;
+    }
     auto begin = xr<XrFrameBeginInfo>(XR_TYPE_FRAME_BEGIN_INFO);
     EXPECT_EQ(xrBeginFrame(session_, &begin), XR_SUCCESS);
     auto end = xr<XrFrameEndInfo>(XR_TYPE_FRAME_END_INFO);
@@ -510,6 +525,26 @@ XrTime LayerTest::frame() {
     poll_events();
     display_time_ = state.predictedDisplayTime;
     return display_time_;
+}
+
+XrTime LayerTest::unlooped_frame_time() {
+    const auto convert =
+        function<PFN_xrConvertTimespecTimeToTimeKHR>("xrConvertTimespecTimeToTimeKHR");
+    if (convert == nullptr) {
+        ADD_FAILURE() << "no frame loop, and no XR_KHR_convert_timespec_time to tell the time";
+        return display_time_;
+    }
+    if (unlooped_frames_ == 0) {
+        timespec now{};
+        clock_gettime(CLOCK_MONOTONIC, &now);
+        unlooped_start_ns_ = now.tv_sec * 1'000'000'000LL + now.tv_nsec;
+    }
+    const std::int64_t ns = unlooped_start_ns_ + unlooped_frames_++ * kFramePeriodNs;
+    const timespec at{static_cast<time_t>(ns / 1'000'000'000),
+                      static_cast<long>(ns % 1'000'000'000)};
+    XrTime time = 0;
+    EXPECT_EQ(convert(instance_, &at, &time), XR_SUCCESS);
+    return time;
 }
 
 XrTime LayerTest::frames(int count) {

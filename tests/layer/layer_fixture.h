@@ -5,7 +5,9 @@
 // XDG_DATA_HOME, or explicit through XR_API_LAYER_PATH) and the Khronos core validation
 // layer beneath it, down to the runtime named by XR_RUNTIME_JSON (the simulated one unless
 // the caller set another). Every test fails on a core validation error or warning it did
-// not expect.
+// not expect. Headless sessions without a frame loop (Monado's; the simulated runtime's with
+// PHYSHAND_SIM_HEADLESS_FRAME_LOOP=0) get their frames' times from
+// XR_KHR_convert_timespec_time instead, and call no frame functions.
 
 #include <gtest/gtest.h>
 #include <openxr/openxr.h>
@@ -220,8 +222,13 @@ class LayerTest : public ::testing::Test {
     void destroy_session();
     XrSpace reference_space(XrSession session, XrReferenceSpaceType type,
                             const XrPosef& pose = identity_pose());
-    // One whole frame (wait, begin, end; events polled); its predicted display time.
+    // One whole frame (wait, begin, end; events polled); its predicted display time. Without
+    // a frame loop (xrWaitFrame gives no display time), the time 1/90 s after the last, by
+    // the runtime's clock (the first: now), without waiting for it, as an app that paces
+    // itself would predict it.
     XrTime frame();
+    // The session has no frame loop: the frame functions are not called.
+    bool no_frame_loop() const { return no_frame_loop_; }
     XrTime frames(int count);
     // Frames in which the app also reads the simulation back (an empty collider list), as
     // apps locate every frame: the layer simulates at most 0.1 s per call, so a long gap
@@ -275,7 +282,12 @@ class LayerTest : public ::testing::Test {
     std::uintmax_t validation_offset_ = 0;
     bool physhand_enabled_ = false;
     PhysicalHandsApi api_;
+    XrTime unlooped_frame_time();
+
     XrTime display_time_ = 0;
+    bool no_frame_loop_ = false;
+    std::int64_t unlooped_start_ns_ = 0;  // CLOCK_MONOTONIC at the session's first frame
+    std::int64_t unlooped_frames_ = 0;
     std::map<XrSession, XrSessionState> states_;
 };
 
