@@ -1,6 +1,7 @@
 #include <openxr/openxr.h>
 #include <openxr/physhand_physical_hands.h>
 
+#include <algorithm>
 #include <cstring>
 #include <memory>
 #include <utility>
@@ -116,6 +117,11 @@ XRAPI_ATTR XrResult XRAPI_CALL DestroyInstance(XrInstance instance) {
 
 }  // namespace physhand::layer
 
+namespace {
+// OpenXR 1.1, any patch (the 1.0.20 headers know no XR_API_VERSION_1_1).
+constexpr XrVersion kNewestApiVersion = XR_MAKE_VERSION(1, 1, 0xffffffffULL);
+}  // namespace
+
 // The layer's only exported symbol: the loader finds everything else through it.
 extern "C" [[gnu::visibility("default")]] XRAPI_ATTR XrResult XRAPI_CALL
 xrNegotiateLoaderApiLayerInterface(const XrNegotiateLoaderInfo* loaderInfo, const char* layerName,
@@ -131,15 +137,18 @@ xrNegotiateLoaderApiLayerInterface(const XrNegotiateLoaderInfo* loaderInfo, cons
         apiLayerRequest->structSize != sizeof(XrNegotiateApiLayerRequest)) {
         return XR_ERROR_INITIALIZATION_FAILED;
     }
-    // Loader interface 1, OpenXR 1.0.
+    // Loader interface 1; OpenXR 1.0 and 1.1. The layer intercepts functions of 1.0 that 1.1
+    // keeps as they were (sessions, frames, hand tracking) and passes every other one down
+    // untouched, so it serves a 1.1 instance as it serves a 1.0 one; a 2.x API it cannot know.
     if (loaderInfo->minInterfaceVersion > XR_CURRENT_LOADER_API_LAYER_VERSION ||
         loaderInfo->maxInterfaceVersion < XR_CURRENT_LOADER_API_LAYER_VERSION ||
-        loaderInfo->minApiVersion >= XR_MAKE_VERSION(1, 1, 0) ||
+        loaderInfo->minApiVersion > kNewestApiVersion ||
         loaderInfo->maxApiVersion < XR_MAKE_VERSION(1, 0, 0)) {
         return XR_ERROR_INITIALIZATION_FAILED;
     }
     apiLayerRequest->layerInterfaceVersion = XR_CURRENT_LOADER_API_LAYER_VERSION;
-    apiLayerRequest->layerApiVersion = XR_CURRENT_API_VERSION;
+    // The newest the loader takes: a loader of 1.0 only is told 1.0.
+    apiLayerRequest->layerApiVersion = std::min(loaderInfo->maxApiVersion, kNewestApiVersion);
     apiLayerRequest->getInstanceProcAddr = &GetInstanceProcAddr;
     apiLayerRequest->createApiLayerInstance = &CreateApiLayerInstance;
     return XR_SUCCESS;

@@ -372,11 +372,12 @@ void LayerTest::expect_validation_messages(const std::vector<std::string>& texts
 
 // ---- fixture: instance and session -------------------------------------------------------
 
-XrResult LayerTest::create_instance(const std::vector<const char*>& extensions) {
+XrResult LayerTest::create_instance(const std::vector<const char*>& extensions,
+                                    XrVersion api_version) {
     auto info = xr<XrInstanceCreateInfo>(XR_TYPE_INSTANCE_CREATE_INFO);
     std::strcpy(info.applicationInfo.applicationName, "physhand_layer_tests");
     info.applicationInfo.applicationVersion = 1;
-    info.applicationInfo.apiVersion = XR_CURRENT_API_VERSION;
+    info.applicationInfo.apiVersion = api_version;
     info.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
     info.enabledExtensionNames = extensions.data();
     const XrResult result = xrCreateInstance(&info, &instance_);

@@ -200,7 +200,8 @@ class LayerTest : public ::testing::Test {
     void expect_validation_messages(const std::vector<std::string>& texts);
 
     // -- instance --
-    XrResult create_instance(const std::vector<const char*>& extensions = all_extensions());
+    XrResult create_instance(const std::vector<const char*>& extensions = all_extensions(),
+                             XrVersion api_version = XR_CURRENT_API_VERSION);
     void destroy_instance();
     XrSystemId system();
     bool physhand_enabled() const { return physhand_enabled_; }
