@@ -1,6 +1,7 @@
 #include "collider_shape.h"
 
 #include <BulletCollision/CollisionShapes/btTriangleIndexVertexArray.h>
+#include <LinearMath/btConvexHullComputer.h>
 #include <btBulletCollisionCommon.h>
 
 #include <algorithm>
@@ -163,8 +164,17 @@ ColliderShape make_collider_shape(const Collider& c) {
                           static_cast<btScalar>(s.radius)));
             break;
         case ShapeKind::Convex: {
+            // Bullet's hull collides kMargin outside its points: moved in by as much, so that
+            // the surface is where the points put it (it rested 1 mm high on a table). A hull
+            // thinner than 8 margins shrinks less, by a quarter of its least depth.
+            std::vector<double> coords;
+            for (const Vec3& v : s.vertices) coords.insert(coords.end(), {v.x(), v.y(), v.z()});
+            btConvexHullComputer inner;
+            inner.compute(coords.data(), 3 * sizeof(double), static_cast<int>(s.vertices.size()),
+                          kMargin, 0.25f);
             auto hull = std::make_unique<btConvexHullShape>();
-            for (const Vec3& v : s.vertices) hull->addPoint(to_bt(v), false);
+            for (int i = 0; i < inner.vertices.size(); ++i)
+                hull->addPoint(inner.vertices[i], false);
             hull->recalcLocalAabb();
             hull->optimizeConvexHull();
             out.shape = std::move(hull);

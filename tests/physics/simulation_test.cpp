@@ -136,7 +136,10 @@ TEST(Simulation, EveryShapeAndMotionCanBeSimulated) {
     for (int f = 1; f <= 180; ++f) sim.step_to(f / 90.0, {});
     for (ColliderHandle h : dynamic) {
         const auto s = sim.body_state(h);
-        EXPECT_GT(s->pose.position.y(), 0.0);  // resting on the floor, not through it
+        // Resting on the floor, not through it: the convex hull's origin is one of its
+        // corners, on the floor when it lies on a face, where contacts hold a body within a
+        // millimetre of the surface.
+        EXPECT_GT(s->pose.position.y(), -0.001);
         EXPECT_LT(s->pose.position.y(), 0.1);
         EXPECT_LT(s->linear_velocity.norm(), 0.05);
     }
