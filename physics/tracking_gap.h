@@ -28,7 +28,7 @@ class TrackingGap {
     Vec3 offset_ = Vec3::Zero();    // wrist position, predicted minus sample, at reacquisition
     Vec3 rotation_ = Vec3::Zero();  // wrist rotation vector, sample to predicted
     double elapsed_ = 0.0;
-    double time_constant_ = 0.0;
+    double duration_ = 0.0;
 };
 
 }  // namespace physhand
