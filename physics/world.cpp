@@ -8,6 +8,7 @@
 
 #include "bullet_convert.h"
 #include "capsule_box_collision.h"
+#include "face_contacts.h"
 #include "hand_point_contacts.h"
 #include "hand_reach_dispatcher.h"
 #include "speed_limit.h"
@@ -21,10 +22,6 @@ constexpr btScalar kSleepLinear = 0.05f;
 constexpr btScalar kSleepAngular = 0.1f;
 // Round shapes need a little rolling resistance to ever come to rest.
 constexpr btScalar kRollingFriction = 0.001f;
-// Turns per manifold and the fewest points below which they are tried (Bullet's defaults for
-// the option: 3 and 3).
-constexpr int kMultipointTurns = 3;
-constexpr int kMultipointMinimum = 3;
 
 BodyRole role_of(const btCollisionObject* o) {
     return static_cast<BodyRole>(o->getUserIndex());
@@ -84,13 +81,7 @@ World::World(const Settings& settings)
       solver_(std::make_unique<btSequentialImpulseConstraintSolver>()),
       world_(std::make_unique<HandWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
                                          configuration_.get(), settings.max_body_speed)) {
-    // Bullet finds one point between two convex shapes (and between one and a plane) a step,
-    // so an object resting on a face or a line stands on that point alone until it has tipped
-    // far enough to find more: a lying cylinder rolled off a table, a 1 cm box wandered 12 cm
-    // over the floor (60 s, nothing touching them). Turned a little about a few axes, the pair
-    // gives the points of the whole face or line at once.
-    configuration_->setConvexConvexMultipointIterations(kMultipointTurns, kMultipointMinimum);
-    configuration_->setPlaneConvexMultipointIterations(kMultipointTurns, kMultipointMinimum);
+    register_face_contacts(*dispatcher_);
     register_capsule_box_collision(*dispatcher_);
     world_->setGravity(to_bt(settings.gravity));
     btContactSolverInfo& info = world_->getSolverInfo();
