@@ -13,7 +13,7 @@
 #include "loader_negotiation.h"
 #include "sessions.h"
 
-// The loader's side of the layer (shared/PRIOR_ART.md, "OpenXR layers"): negotiation,
+// The loader's side of the layer (docs/design.md, "The OpenXR loader"): negotiation,
 // instance creation through the chain, and instance destruction.
 namespace physhand::layer {
 

@@ -12,7 +12,7 @@
 
 namespace physhand::layer {
 
-// Writes the ghost hands of a session as recorded tracks (shared/SCENE_FORMAT.md,
+// Writes the ghost hands of a session as recorded tracks (docs/scene-format.md,
 // "Recorded"), one CSV per hand, so that a motion recorded on a headset replays in any
 // scene. Enabled by PHYSHAND_RECORD=DIR.
 class Recorder {

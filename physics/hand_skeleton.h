@@ -66,7 +66,7 @@ struct HandPose {
     Pose& operator[](Joint j) { return joints[index_of(j)]; }
 };
 
-// Shape parameters of the keyframed hand (SCENE_FORMAT.md, HAND).
+// Shape parameters of the keyframed hand (docs/scene-format.md, HAND).
 struct HandArticulation {
     std::array<double, kFingerCount> curl{};  // 0 open .. 1 fist
     double spread = 0.0;                      // -1 pressed together .. 1 fanned

@@ -8,7 +8,7 @@ namespace physhand {
 
 namespace {
 
-constexpr double kStackedMaxSpeed = 0.05;  // SCENE_FORMAT.md: stacked bodies at rest
+constexpr double kStackedMaxSpeed = 0.05;  // docs/scene-format.md: stacked bodies at rest
 
 std::string fmt(const char* format, double a, double b = 0.0) {
     char buf[160];

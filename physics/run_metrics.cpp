@@ -6,9 +6,9 @@
 namespace physhand {
 
 namespace {
-// METRICS.md: spring-back within this long after a release is not tracking lag.
+// docs/metrics.md: spring-back within this long after a release is not tracking lag.
 constexpr double kContactMemory_s = 0.25;
-// METRICS.md: a thrown body's speed is taken this long after its last contact.
+// docs/metrics.md: a thrown body's speed is taken this long after its last contact.
 constexpr double kReleaseDelay_s = 0.05;
 // Frame times are whole nanoseconds: "at or after" must not miss a frame by rounding.
 constexpr double kTimeTolerance_s = 1e-6;

@@ -10,7 +10,7 @@
 
 namespace physhand {
 
-// A body leaving the hand (METRICS.md, release_speed_ratio): its speed 50 ms after its last
+// A body leaving the hand (docs/metrics.md, release_speed_ratio): its speed 50 ms after its last
 // hand contact and the ghost palm's speed at that moment.
 struct Release {
     std::size_t body = 0;     // as numbered in RunMetrics::add_body
@@ -56,7 +56,7 @@ struct MetricsSummary {
 // A ghost palm slower than this at the last contact placed the body rather than threw it.
 inline constexpr double kThrowPalmSpeed = 0.5;  // m/s
 
-// Accumulates the figures of shared/METRICS.md over a run, frame by frame.
+// Accumulates the figures of docs/metrics.md over a run, frame by frame.
 class RunMetrics {
   public:
     // One hand at one displayed frame: the ghost the app's time asked for, the physical

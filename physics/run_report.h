@@ -7,7 +7,7 @@
 
 namespace physhand {
 
-// The result object of DESIGN.md ("Command-line tools"), shared by physhand-scene and
+// The result object of docs/design.md ("Command-line tools"), shared by physhand-scene and
 // physhand-sample.
 nlohmann::json to_json(const RunResult& result);
 // One line for people: scene, success, the headline figures.

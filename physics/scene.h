@@ -13,7 +13,7 @@
 
 namespace physhand {
 
-// Scene file, format physhand-scene/1 (shared/SCENE_FORMAT.md).
+// Scene file, format physhand-scene/1 (docs/scene-format.md).
 
 enum class ShapeKind { Box, Sphere, Capsule, Cylinder, Convex, Mesh, Plane };
 enum class Motion { Static, Kinematic, Dynamic };
@@ -56,7 +56,7 @@ struct Keyframe {
     HandArticulation articulation;
 };
 
-// One recorded sample: 26 joints at time t (SCENE_FORMAT.md "Recorded").
+// One recorded sample: 26 joints at time t (docs/scene-format.md "Recorded").
 struct RecordedSample {
     double t = 0.0;
     HandPose hand;  // active when every joint was valid

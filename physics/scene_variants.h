@@ -21,7 +21,7 @@ struct VariantOptions {
     int seeds = 3;
 };
 
-// Every variant of `base`, family by family (METRICS.md variant_success):
+// Every variant of `base`, family by family (docs/metrics.md variant_success):
 // - mass: every dynamic collider x0.3 and x3, the motion unchanged;
 // - friction: every dynamic collider's friction 0.5;
 // - speed: the whole script (hands, kinematic paths, dropouts, timed predicates) 0.7x and
@@ -39,7 +39,7 @@ Scene mirrored(const Scene& scene);
 // The scene's script played `speed` times as fast.
 Scene sped_up(const Scene& scene, double speed);
 // The final grip made tighter: the four fingers' curl raised to at least `curl` from the
-// keyframe where each hand's curls reach their final values (METRICS.md
+// keyframe where each hand's curls reach their final values (docs/metrics.md
 // squeeze_penetration_mm: the ghost's fingers close further into what the hand holds).
 Scene squeezed(const Scene& scene, double curl);
 

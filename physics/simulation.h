@@ -126,7 +126,7 @@ class Simulation {
     // The hand as shown at the latest time stepped to.
     const PhysicalHandState& hand(HandSide side) const;
     // Every pose, velocity and drive force of both hands and of every collider is finite
-    // (the nonfinite_count of METRICS.md counts frames where this is false).
+    // (the nonfinite_count of docs/metrics.md counts frames where this is false).
     bool state_is_finite() const;
     const std::vector<ContactInfo>& contacts() const { return contacts_; }
     // Deepest hand-collider penetration at the end of any substep of the last step, m.

@@ -44,7 +44,7 @@ cp "$out"/*.csv "$out"/*.svg "$out/overhead.json" "$root/bench/"
     echo
     echo "## Overhead through the layer"
     echo
-    echo "overhead_ns (shared/METRICS.md): the median CPU time of one call through the loader to the simulated runtime with the layer, minus the same without it (\`physhand-overhead\`, one run, ${REPEAT:-3} repetitions). Each hand locate is one frame later than the last, so the layer steps its simulation on every call it simulates. The \`xrEndFrame\` rows time whole frames of a Vulkan session on lavapipe, in which the layer intercepts only \`xrEndFrame\`, in wall time: the overlay draws on lavapipe's threads."
+    echo "overhead_ns (docs/metrics.md): the median CPU time of one call through the loader to the simulated runtime with the layer, minus the same without it (\`physhand-overhead\`, one run, ${REPEAT:-3} repetitions). Each hand locate is one frame later than the last, so the layer steps its simulation on every call it simulates. The \`xrEndFrame\` rows time whole frames of a Vulkan session on lavapipe, in which the layer intercepts only \`xrEndFrame\`, in wall time: the overlay draws on lavapipe's threads."
     echo
     cat "$out/overhead.md"
     echo

@@ -134,7 +134,7 @@ int main(int argc, char** argv) {
         std::vector<physhand::Scene> scenes;
         for (const std::string& path : scene_paths) scenes.push_back(physhand::load_scene(path));
         // The simulated runtime plays the hands of the scene this names, read when an
-        // instance is created (DESIGN.md); one set by the user wins.
+        // instance is created (docs/design.md); one set by the user wins.
         const bool user_scene = std::getenv("PHYSHAND_SIM_SCENE") != nullptr;
         // The simulated head looks straight ahead; the paper scenes are on a table below.
         setenv("PHYSHAND_SIM_HEAD_PITCH_DEG", "-50", 0);

@@ -1,4 +1,4 @@
-// overhead_ns (shared/METRICS.md): how much longer an OpenXR call takes through the physhand
+// overhead_ns (docs/metrics.md): how much longer an OpenXR call takes through the physhand
 // layer than straight to the runtime, measured in one process through the real loader and
 // the simulated runtime. Each benchmark creates its own instance (the loader allows one at
 // a time), with the implicit layer disabled by DISABLE_XR_APILAYER_PHYSHAND_physical_hands=1

@@ -1,4 +1,4 @@
-// physhand-robustness: variant_success (METRICS.md). Plays every variant of the paper scenes
+// physhand-robustness: variant_success (docs/metrics.md). Plays every variant of the paper scenes
 // and lift_hold (physics/scene_variants) for every drive and writes the success per family
 // and overall, each failure with its cause, as CSV and Markdown, then the squeeze sweep of
 // lift_hold. `--repeat N` is the number of seeds of the noise, tracking and dropout families.
@@ -121,7 +121,7 @@ int main(int argc, char** argv) {
            << (failures[c].empty() ? "." : "") << "\n\n";
         for (const std::string& f : failures[c]) md << "- " << f << '\n';
     }
-    md << "\n### Squeeze\n\nsqueeze_penetration_mm (METRICS.md): lift_hold with the four "
+    md << "\n### Squeeze\n\nsqueeze_penetration_mm (docs/metrics.md): lift_hold with the four "
           "fingers' final curl raised from 0.3 to 1.0, max_penetration_mm, and whether the cube "
           "stayed held.\n\n| final curl |";
     for (const std::string& c : columns) md << ' ' << c << " |";

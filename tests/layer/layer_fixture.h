@@ -130,7 +130,7 @@ struct HandSample {
 };
 bool same_bits(const HandSample& a, const HandSample& b);
 
-// ---- scene files (shared/SCENE_FORMAT.md) -------------------------------------------------
+// ---- scene files (docs/scene-format.md) -------------------------------------------------
 
 struct WristKey {
     double t;
@@ -150,7 +150,7 @@ inline constexpr XrVector3f kDeskHalfExtents = {0.4f, 0.025f, 0.3f};
 // reach, to 3.4 cm below it in 1 s, and stays there: the ghost palm ends inside the desk.
 inline constexpr double kPressTime = 1.0;
 nlohmann::json pressing_hand(double x);
-// Allowed depth of a hand body inside a collider (METRICS.md, max_penetration_mm).
+// Allowed depth of a hand body inside a collider (docs/metrics.md, max_penetration_mm).
 inline constexpr double kMaxPenetration = 0.005;
 // No hand body is thinner than this (sphere or capsule radius, palm box half thickness:
 // physics/physical_hand.cpp), whatever the drive; joint radii describe the tracked hand,

@@ -20,7 +20,7 @@ constexpr int kPathologyFrames = 400;
 constexpr double kFrameS = 1 / 90.0;
 constexpr double kHitchS = 0.2;
 constexpr int kLongestDropoutFrames = 270;  // 3 s
-constexpr double kContactMemoryS = 0.25;    // as tracking error counts joints (METRICS.md)
+constexpr double kContactMemoryS = 0.25;    // as tracking error counts joints (docs/metrics.md)
 
 // Where each hand hovers while tracking is clean: above the table, beside the cube.
 const std::array<Vec3, 2> kHome = {Vec3(-0.1, 0.85, -0.30), Vec3(0.1, 0.85, -0.30)};

@@ -23,7 +23,7 @@ struct PathologyResult {
     double speed_limit = 0.0;
     std::uint64_t speed_clamps = 0;
     // Clean tracking until, in both hands, every joint that touched nothing in the last
-    // 0.25 s (as tracking error counts them, METRICS.md) is within kRecoveredM of its
+    // 0.25 s (as tracking error counts them, docs/metrics.md) is within kRecoveredM of its
     // ghost; inf: not within kRecoveryWindowS.
     double recovery_s = 0.0;
 };

@@ -59,7 +59,7 @@ TEST(Drive, ForceLimitCapsTheMagnitudeNotTheDirection) {
 }
 
 // Symplectic Euler, as Bullet integrates: the paper's gains on a 15 g body at 90 Hz
-// diverge explicitly (PRIOR_ART.md) and settle implicitly, at any gain.
+// diverge explicitly (docs/design.md) and settle implicitly, at any gain.
 double settle(DriveSettings d, double mass, double h, int steps) {
     LinearState s{Vec3(0.05, 0, 0), Vec3::Zero()};
     for (int i = 0; i < steps; ++i) {

@@ -188,7 +188,7 @@ TEST(RunMetrics, JerkOfACubicPathIsItsThirdDerivative) {
 }
 
 // A body's speed 50 ms after its last contact over the ghost palm's speed then
-// (METRICS.md); only a release at throwing speed counts as a throw.
+// (docs/metrics.md); only a release at throwing speed counts as a throw.
 TEST(RunMetrics, ReleaseSpeedRatioOfTheFastestThrow) {
     RunMetrics m;
     const HandPose still = pose_hand(HandSide::Right, Pose{}, HandArticulation{});
