@@ -1,5 +1,6 @@
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,36 +37,51 @@ const XrCompositionLayerProjection* find_projection(const XrFrameEndInfo& info) 
     return nullptr;
 }
 
-// The overlay layer for this frame (the simulation already stepped to its time), or null
-// when there is nothing to draw or no room for it. Session locked. Throws on any failure.
-const XrCompositionLayerProjection* draw_overlay(SessionState& state, const XrFrameEndInfo& info) {
+// The hands as the frame's step left them, copied under the session's lock for the overlay
+// to draw after it is released.
+struct FrameHands {
+    std::array<HandPose, 2> ghosts;
+    std::array<PhysicalHandState, 2> physical;
+};
+
+// Null when there is nothing to draw. Session locked.
+std::optional<FrameHands> frame_hands(const SessionState& state) {
+    if (!state.simulation) return std::nullopt;
+    FrameHands hands;
+    bool any_active = false;
+    for (const HandSide side : kHandSides) {
+        const auto i = static_cast<std::size_t>(side);
+        hands.ghosts[i] = state.ghosts[i];
+        hands.physical[i] = state.simulation->hand(side);
+        any_active = any_active || hands.ghosts[i].active || hands.physical[i].joints.active;
+    }
+    if (!any_active) return std::nullopt;
+    return hands;
+}
+
+// The overlay layer for this frame, or null when there is no room for it or it cannot be
+// placed. Overlay locked. Throws on any failure.
+const XrCompositionLayerProjection* draw_overlay(SessionState& state, const XrFrameEndInfo& info,
+                                                 const FrameHands& frame_hands) {
     if (info.layerCount >= state.graphics.maxLayerCount || info.displayTime <= 0 ||
-        !state.simulation || (info.layerCount > 0 && info.layers == nullptr)) {
+        (info.layerCount > 0 && info.layers == nullptr)) {
         return nullptr;
     }
     const XrCompositionLayerProjection* app_layer = find_projection(info);
     if (app_layer == nullptr) return nullptr;
-
-    std::array<overlay::Hand, 2> hands;
-    bool any_active = false;
-    for (const HandSide side : kHandSides) {
-        const auto i = static_cast<std::size_t>(side);
-        any_active =
-            any_active || state.ghosts[i].active || state.simulation->hand(side).joints.active;
-    }
-    if (!any_active) return nullptr;
     Pose frame;
     XrSpaceLocationFlags flags = 0;
     if (XR_FAILED(state.frame_in_space(app_layer->space, info.displayTime, frame, flags)) ||
         (flags & kPoseValid) != kPoseValid) {
         return nullptr;
     }
+    std::array<overlay::Hand, 2> hands;
     for (const HandSide side : kHandSides) {
         const auto i = static_cast<std::size_t>(side);
-        const PhysicalHandState& physical = state.simulation->hand(side);
-        hands[i].ghost_active = state.ghosts[i].active;
+        const PhysicalHandState& physical = frame_hands.physical[i];
+        hands[i].ghost_active = frame_hands.ghosts[i].active;
         hands[i].physical_active = physical.joints.active;
-        hands[i].ghost = to_overlay(state.ghosts[i], frame);
+        hands[i].ghost = to_overlay(frame_hands.ghosts[i], frame);
         hands[i].physical = to_overlay(physical.joints, frame);
         hands[i].in_contact = physical.in_contact;
     }
@@ -78,7 +94,7 @@ const XrCompositionLayerProjection* draw_overlay(SessionState& state, const XrFr
     return state.overlay->draw(*app_layer, hands);
 }
 
-// Turns the overlay off for the rest of the session, saying why once. Session locked.
+// Turns the overlay off for the rest of the session, saying why once. Overlay locked.
 void turn_overlay_off(SessionState& state, const char* why) {
     log_failure("xrEndFrame (the overlay is off for this session)", why);
     state.overlay.reset();
@@ -86,12 +102,13 @@ void turn_overlay_off(SessionState& state, const char* why) {
 }
 
 // Points `submitted` at the app's layers with the overlay's after them, when it drew one;
-// returns whether it did. Session locked. Any failure turns the overlay off for the
+// returns whether it did. Overlay locked. Any failure turns the overlay off for the
 // session; the app's frame then goes through unchanged, now and from now on.
-bool append_overlay(SessionState& state, const XrFrameEndInfo& info, XrFrameEndInfo& submitted) {
+bool append_overlay(SessionState& state, const XrFrameEndInfo& info, const FrameHands& hands,
+                    XrFrameEndInfo& submitted) {
     const auto start = std::chrono::steady_clock::now();
     try {
-        const XrCompositionLayerProjection* layer = draw_overlay(state, info);
+        const XrCompositionLayerProjection* layer = draw_overlay(state, info, hands);
         if (layer == nullptr) return false;
         // A copy: the app's array is never modified.
         state.submitted_layers.assign(info.layers, info.layers + info.layerCount);
@@ -147,11 +164,18 @@ XRAPI_ATTR XrResult XRAPI_CALL EndFrame(XrSession session, const XrFrameEndInfo*
         XrFrameEndInfo submitted = *frameEndInfo;
         bool appended = false;
         {
-            std::lock_guard lock(state->mutex);
-            if (state->alive) {
-                step_frame(*state, frameEndInfo->displayTime);
-                if (state->vulkan) appended = append_overlay(*state, *frameEndInfo, submitted);
+            std::lock_guard overlay_lock(state->overlay_mutex);
+            std::optional<FrameHands> hands;
+            {
+                std::lock_guard lock(state->mutex);
+                if (state->alive) {
+                    step_frame(*state, frameEndInfo->displayTime);
+                    if (state->vulkan) hands = frame_hands(*state);
+                }
             }
+            // Drawing waits for swapchain images and the GPU: the session's lock is free
+            // meanwhile, so other threads' locates never wait for it.
+            if (hands) appended = append_overlay(*state, *frameEndInfo, *hands, submitted);
         }
         // Unlocked: the runtime may block here, and other threads may locate hands meanwhile.
         // The app synchronises xrEndFrame with xrDestroySession, so the layers stay alive.
@@ -164,7 +188,7 @@ XRAPI_ATTR XrResult XRAPI_CALL EndFrame(XrSession session, const XrFrameEndInfo*
         // when it fails too, the app's frame was, and the app gets its own error.
         const XrResult resubmitted = state->instance->next.EndFrame(session, frameEndInfo);
         if (XR_SUCCEEDED(resubmitted)) {
-            std::lock_guard lock(state->mutex);
+            std::lock_guard lock(state->overlay_mutex);
             const std::string what =
                 "the runtime refused the frame with the overlay's layer (XrResult " +
                 std::to_string(result) + "); the app's frame was submitted alone";

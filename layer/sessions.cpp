@@ -286,7 +286,7 @@ XRAPI_ATTR XrResult XRAPI_CALL DestroySession(XrSession session) {
         const std::shared_ptr<SessionState> state = remove_session(session);
         if (!state) return XR_ERROR_HANDLE_INVALID;
         {
-            std::lock_guard lock(state->mutex);
+            std::scoped_lock lock(state->overlay_mutex, state->mutex);
             state->alive = false;
             if (state->frame != XR_NULL_HANDLE) state->instance->next.DestroySpace(state->frame);
             state->frame = XR_NULL_HANDLE;

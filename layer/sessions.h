@@ -38,8 +38,11 @@ struct ColliderRecord {
     Motion motion = Motion::Static;
 };
 
-// Everything the layer keeps for one session. `mutex` guards every member below it: the
-// simulation is not thread-safe, and apps locate hands from any thread.
+// Everything the layer keeps for one session. `mutex` guards the members from it to
+// `overlay_mutex`: the simulation is not thread-safe, and apps locate hands from any thread.
+// `overlay_mutex` guards the overlay's members after it; xrEndFrame draws under it alone,
+// so the swapchain and GPU waits of drawing never hold up a locate. Whoever takes both takes
+// `overlay_mutex` first.
 class SessionState {
   public:
     SessionState(std::shared_ptr<const InstanceState> owner, XrSession handle);
@@ -53,6 +56,7 @@ class SessionState {
     std::mutex mutex;
     bool alive = true;  // false once xrDestroySession began: late callers get HANDLE_INVALID
     // The layer's own STAGE (LOCAL without one) reference space: the simulation's frame.
+    // Destroyed under both locks, so the overlay reads it under `overlay_mutex` alone.
     XrSpace frame = XR_NULL_HANDLE;
     // Null when the layer could not set the session up; its hands then pass through.
     std::unique_ptr<Simulation> simulation;
@@ -69,6 +73,7 @@ class SessionState {
     XrTime advanced_to = 0;              // the latest time the simulation was advanced to
     std::array<HandPose, 2> ghosts;      // the runtime's hands at advanced_to, in the frame
 
+    std::mutex overlay_mutex;
     // The app's Vulkan objects; empty for other graphics APIs, headless sessions, with the
     // overlay turned off in the config or after it failed: then there is no overlay.
     std::optional<VulkanBinding> vulkan;
@@ -93,7 +98,7 @@ class SessionState {
     void advance(XrTime time);
     // The once-per-frame step at xrEndFrame, for apps that locate no hands: when the frame
     // has something to show (an overlay, or colliders), creates the layer's own trackers
-    // where needed and advances to `display_time` (frame_step.cpp).
+    // where needed and advances to `display_time` (frame_step.cpp). Both locks held.
     void step_frame(XrTime display_time);
     // Destroys the layer's own trackers (frame_step.cpp).
     void destroy_own_trackers() noexcept;

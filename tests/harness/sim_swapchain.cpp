@@ -2,6 +2,8 @@
 // acquire, wait, release cycle with its call-order rules. Headless sessions offer no format.
 
 #include <array>
+#include <chrono>
+#include <thread>
 
 #include "sim_runtime.h"
 
@@ -189,8 +191,13 @@ XrResult xrAcquireSwapchainImage(XrSwapchain swapchain,
 }
 
 // Images are ready as soon as they are acquired: the application's own work on them is
-// all the work there is, so the timeout never matters.
+// all the work there is, so the timeout never matters. PHYSHAND_SIM_SWAPCHAIN_WAIT_MS=N
+// makes every wait take N ms, as a compositor still reading the image would; slept outside
+// the runtime's lock, so other threads' calls go on meanwhile.
 XrResult xrWaitSwapchainImage(XrSwapchain swapchain, const XrSwapchainImageWaitInfo* waitInfo) {
+    const std::optional<std::int64_t> wait_ms =
+        whole_number_env("PHYSHAND_SIM_SWAPCHAIN_WAIT_MS", 0);
+    if (wait_ms) std::this_thread::sleep_for(std::chrono::milliseconds(*wait_ms));
     return guarded([&](Runtime& rt) {
         SwapchainData* data = rt.swapchains.find(swapchain);
         if (data == nullptr) return XR_ERROR_HANDLE_INVALID;

@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -19,6 +21,7 @@
 #include <ostream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "png_file.h"
@@ -86,6 +89,7 @@ class OverlayLayerTest : public ::testing::Test {
 
     void TearDown() override {
         unsetenv("PHYSHAND_SIM_REJECT_LAYERS_OVER");
+        unsetenv("PHYSHAND_SIM_SWAPCHAIN_WAIT_MS");
         if (session_ != XR_NULL_HANDLE) xrDestroySession(session_);
         if (device_ != VK_NULL_HANDLE) {
             vkDestroyCommandPool(device_, pool_, nullptr);
@@ -298,6 +302,7 @@ class OverlayLayerTest : public ::testing::Test {
                XrResult expected = XR_SUCCESS) {
         auto state = zeroed<XrFrameState>(XR_TYPE_FRAME_STATE);
         XR_OK(xrWaitFrame(session_, nullptr, &state));
+        display_time_ = state.predictedDisplayTime;
         XR_OK(xrBeginFrame(session_, nullptr));
         auto locate = zeroed<XrViewLocateInfo>(XR_TYPE_VIEW_LOCATE_INFO);
         locate.viewConfigurationType = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
@@ -347,7 +352,9 @@ class OverlayLayerTest : public ::testing::Test {
             if (XR_SUCCEEDED(expected)) return;
             projection_views[1] = unspoilt;
         }
+        const auto start = std::chrono::steady_clock::now();
         XR_OK(xrEndFrame(session_, &end));
+        end_frame_took_ = std::chrono::steady_clock::now() - start;
     }
 
     // The newest captured image of view 0.
@@ -377,6 +384,8 @@ class OverlayLayerTest : public ::testing::Test {
     std::vector<VkImage> images_;
     std::array<XrView, 2> views_{};
     XrVector3f wrist_{};
+    std::atomic<XrTime> display_time_ = 0;                  // of the latest frame
+    std::chrono::steady_clock::duration end_frame_took_{};  // its xrEndFrame
     VkInstance vk_instance_ = VK_NULL_HANDLE;
     VkPhysicalDevice physical_device_ = VK_NULL_HANDLE;
     VkDevice device_ = VK_NULL_HANDLE;
@@ -448,6 +457,54 @@ TEST_F(OverlayLayerTest, TintOffInTheConfigDrawsTheHandsUntinted) {
     EXPECT_EQ(count_near_wrist(png, views_[0], wrist_,
                                [&](int x, int y) { return is_tint(png.at(x, y)); }),
               0);
+}
+
+// Drawing the overlay waits for swapchain images (here made slow, as a busy compositor
+// makes them) and for the GPU, but not under the lock that locating hands takes: another
+// thread's locates go on while xrEndFrame draws.
+TEST_F(OverlayLayerTest, LocatesFromAnotherThreadDoNotWaitForTheOverlaysDrawing) {
+    constexpr auto kWait = std::chrono::milliseconds(40);
+    write_config(box_config());
+    // The simulated runtime composes and writes captures under its own lock, which its
+    // locates take too: no capture here.
+    unsetenv("PHYSHAND_SIM_CAPTURE");
+    ASSERT_NO_FATAL_FAILURE(start());
+    ASSERT_NO_FATAL_FAILURE(frame());
+    setenv("PHYSHAND_SIM_SWAPCHAIN_WAIT_MS", std::to_string(kWait.count()).c_str(), 1);
+    const auto locate_joints = function<PFN_xrLocateHandJointsEXT>("xrLocateHandJointsEXT");
+    std::atomic<bool> done = false;
+    std::atomic<int> failures = 0;
+    std::chrono::steady_clock::duration longest{};
+    int locates = 0;
+    std::thread locator([&] {
+        while (!done) {
+            auto info = zeroed<XrHandJointsLocateInfoEXT>(XR_TYPE_HAND_JOINTS_LOCATE_INFO_EXT);
+            info.baseSpace = space_;
+            info.time = display_time_;
+            auto locations = zeroed<XrHandJointLocationsEXT>(XR_TYPE_HAND_JOINT_LOCATIONS_EXT);
+            std::array<XrHandJointLocationEXT, XR_HAND_JOINT_COUNT_EXT> joints{};
+            locations.jointCount = XR_HAND_JOINT_COUNT_EXT;
+            locations.jointLocations = joints.data();
+            const auto start = std::chrono::steady_clock::now();
+            if (XR_FAILED(locate_joints(trackers_[0], &info, &locations))) ++failures;
+            longest = std::max(longest, std::chrono::steady_clock::now() - start);
+            ++locates;
+        }
+    });
+    for (int i = 0; i < 5; ++i) {
+        ASSERT_NO_FATAL_FAILURE(frame());
+        // The overlay was drawn, waiting for its swapchain image within xrEndFrame.
+        EXPECT_GE(end_frame_took_, kWait);
+    }
+    done = true;
+    locator.join();
+    EXPECT_EQ(failures, 0);
+    EXPECT_GT(locates, 0);
+    // Far less than a swapchain wait: a locate held up by the drawing would wait it out.
+    EXPECT_LT(longest, kWait / 2);
+    RecordProperty(
+        "longest_locate_us",
+        std::to_string(std::chrono::duration_cast<std::chrono::microseconds>(longest).count()));
 }
 
 // Pixels that are not the app's colour.
