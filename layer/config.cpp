@@ -2,12 +2,14 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 
+#include "collider_syntax.h"
 #include "layer_log.h"
 
 namespace physhand::layer {
@@ -108,28 +110,20 @@ DriveSettings parse_drive(const json& object) {
     return *drive;
 }
 
-// Config colliders use the scene file's COLLIDER syntax, so they are validated by the
-// scene parser itself, wrapped in a minimal scene; its messages name "colliders[i]...",
-// which is also their path in the config file.
-std::vector<Collider> parse_colliders(const json& array, const std::filesystem::path& base_dir) {
+// Config colliders are written as a scene file's colliders and read by the same unit; the
+// messages name "colliders[i]...", their path in the config file too.
+std::vector<Collider> parse_colliders(const json& array) {
     if (!array.is_array()) throw std::runtime_error("colliders: expected an array");
-    const json scene = {{"format", "physhand-scene/1"},
-                        {"name", "config"},
-                        {"description", ""},
-                        {"duration_s", 1.0},
-                        {"colliders", array}};
     std::vector<Collider> colliders;
-    try {
-        colliders = parse_scene(scene.dump(), base_dir).colliders;
-    } catch (const SceneError& e) {
-        throw std::runtime_error(e.what());
-    }
-    for (std::size_t i = 0; i < colliders.size(); ++i) {
-        if (colliders[i].motion != Motion::Static) {
-            throw std::runtime_error("colliders[" + std::to_string(i) +
-                                     "].motion: expected \"static\" (config colliders are fixed in "
+    for (std::size_t i = 0; i < array.size(); ++i) {
+        const std::string path = syntax::index_path("colliders", i);
+        Collider collider = syntax::read_collider(syntax::Node(array[i], path), colliders);
+        if (collider.motion != Motion::Static) {
+            throw std::runtime_error(path +
+                                     ".motion: expected \"static\" (config colliders are fixed in "
                                      "the room; apps declare moving ones through the extension)");
         }
+        colliders.push_back(std::move(collider));
     }
     return colliders;
 }
@@ -162,7 +156,7 @@ std::optional<DriveSettings> make_drive(std::string_view name, const DriveOverri
     return drive;
 }
 
-Config parse_config(const std::string& json_text, const std::filesystem::path& base_dir) {
+Config parse_config(const std::string& json_text) {
     json root;
     try {
         root = json::parse(json_text);
@@ -187,7 +181,7 @@ Config parse_config(const std::string& json_text, const std::filesystem::path& b
         } else if (key == "drive") {
             config.drive = parse_drive(value);
         } else if (key == "colliders") {
-            config.colliders = parse_colliders(value, base_dir);
+            config.colliders = parse_colliders(value);
         } else {
             throw std::runtime_error(key + ": unknown key");
         }
@@ -218,7 +212,7 @@ Config load_config() {
     std::stringstream text;
     text << file.rdbuf();
     try {
-        return parse_config(text.str(), path.parent_path());
+        return parse_config(text.str());
     } catch (const std::exception& e) {
         log_once("config " + path.string() + ": " + e.what() + "; using the defaults");
         return {};

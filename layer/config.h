@@ -1,14 +1,13 @@
 #pragma once
 
-#include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "collider.h"
 #include "drive.h"
 #include "overlay_renderer.h"
-#include "scene.h"
 
 namespace physhand::layer {
 
@@ -37,8 +36,8 @@ struct DriveOverrides {
 std::optional<DriveSettings> make_drive(std::string_view name, const DriveOverrides& overrides);
 
 // Parses a config file's text. Unknown keys are errors, so a typo never passes silently.
-// Throws std::runtime_error naming the key at fault. `base_dir` is the file's folder.
-Config parse_config(const std::string& json_text, const std::filesystem::path& base_dir);
+// Throws std::runtime_error naming the key at fault.
+Config parse_config(const std::string& json_text);
 
 // The config file named by PHYSHAND_CONFIG, else $XDG_CONFIG_HOME/physhand/config.json
 // (XDG_CONFIG_HOME defaulting to ~/.config). No file there: the defaults. A file that

@@ -9,7 +9,7 @@
 #include "hand_skeleton.h"
 #include "layer_log.h"
 #include "overlay_views.h"
-#include "run_metrics.h"
+#include "quantile.h"
 
 namespace physhand::layer {
 

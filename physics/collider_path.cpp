@@ -1,6 +1,6 @@
 #include <algorithm>
 
-#include "scene.h"
+#include "collider.h"
 
 namespace physhand {
 

@@ -2,7 +2,7 @@
 
 #include <memory>
 
-#include "scene.h"
+#include "collider.h"
 
 class btCollisionShape;
 class btTriangleIndexVertexArray;

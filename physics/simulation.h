@@ -12,7 +12,7 @@
 
 #include "drive.h"
 #include "hand_skeleton.h"
-#include "scene.h"
+#include "collider.h"
 #include "speed_limit.h"
 
 namespace physhand {

@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "collider_shape.h"
-#include "scene.h"
+#include "collider.h"
 #include "simulation.h"
 #include "speed_limit.h"
 

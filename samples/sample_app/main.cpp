@@ -163,7 +163,7 @@ int main(int argc, char** argv) {
                 print(played, json);
             }
         }
-    } catch (const physhand::SceneError& e) {
+    } catch (const physhand::FormatError& e) {
         std::cerr << "physhand-sample: " << e.what() << "\n";
         return 2;
     } catch (const std::exception& e) {

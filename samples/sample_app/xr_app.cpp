@@ -16,6 +16,7 @@
 
 #include "frame_clock.h"
 #include "hand_drive.h"
+#include "quantile.h"
 #include "run_metrics.h"
 #include "touch_log.h"
 #include "xr_check.h"

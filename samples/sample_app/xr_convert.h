@@ -6,7 +6,7 @@
 
 // Between the scene's doubles and OpenXR's floats. Plain casts both ways, with nothing
 // renormalised: the physics-only runner rounds the scene the same way
-// (physics/float_transport.h), so both paths simulate the very same world.
+// (scene/float_transport.h), so both paths simulate the very same world.
 namespace physhand::sample {
 
 inline XrVector3f to_xr(const Vec3& v) {

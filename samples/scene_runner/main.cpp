@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
         } else {
             std::cout << physhand::summary_line(result) << "\n";
         }
-    } catch (const physhand::SceneError& e) {
+    } catch (const physhand::FormatError& e) {
         std::cerr << "physhand-scene: " << e.what() << "\n";
         return 2;
     } catch (const std::invalid_argument& e) {

@@ -1,5 +1,5 @@
 // physhand-robustness: variant_success (docs/metrics.md). Plays every variant of the paper scenes
-// and lift_hold (physics/scene_variants) for every drive and writes the success per family
+// and lift_hold (scene/scene_variants) for every drive and writes the success per family
 // and overall, each failure with its cause, as CSV and Markdown, then the squeeze sweep of
 // lift_hold. `--repeat N` is the number of seeds of the noise, tracking and dropout families.
 #include <algorithm>

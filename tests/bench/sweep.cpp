@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "bench_options.h"
+#include "quantile.h"
 #include "run_metrics.h"
 #include "scene.h"
 #include "scene_run.h"

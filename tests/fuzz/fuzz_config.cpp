@@ -12,7 +12,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);
     try {
-        physhand::layer::parse_config(text, PHYSHAND_FUZZ_CORPUS_DIR);
+        physhand::layer::parse_config(text);
     } catch (const std::runtime_error&) {
         // The documented answer to a config file that does not parse.
     }

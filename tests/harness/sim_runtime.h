@@ -48,7 +48,7 @@ inline constexpr XrSpaceVelocityFlags kVelocityFlags =
 
 // Virtual clock: scene time 0 is kSceneStart, a whole number of 90 Hz periods (as any
 // XrTime origin may be), and the first displayed frame is scene frame 1, as in the headless
-// runner (physics/scene_run.cpp), so both play the very same ghosts. Nothing sleeps, so
+// runner (scene/scene_run.cpp), so both play the very same ghosts. Nothing sleeps, so
 // runs are deterministic (unless PHYSHAND_SIM_SWAPCHAIN_WAIT_MS asks, sim_swapchain.cpp).
 inline constexpr XrTime kSceneStart = 90 * kFramePeriodNs;
 

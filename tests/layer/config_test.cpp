@@ -32,7 +32,7 @@ void expect_color(const overlay::Color& actual, const overlay::Color& expected) 
 }
 
 TEST(ConfigParse, NoDrawingKeysKeepTheOverlaysDefaults) {
-    const layer::Config config = parse_config("{}", ".");
+    const layer::Config config = parse_config("{}");
     const overlay::Settings defaults;
     expect_color(config.drawing.hand_colors[0], defaults.hand_colors[0]);
     expect_color(config.drawing.hand_colors[1], defaults.hand_colors[1]);
@@ -44,14 +44,13 @@ TEST(ConfigParse, NoDrawingKeysKeepTheOverlaysDefaults) {
 
 TEST(ConfigParse, ColorsGhostOpacityAndTintSetTheDrawing) {
     const layer::Config config = parse_config(R"({"colors": {"left": [1, 0, 0.5],
-        "contact": [0, 1, 0]}, "ghost_opacity": 0.6, "tint": false})",
-                                              ".");
+        "contact": [0, 1, 0]}, "ghost_opacity": 0.6, "tint": false})");
     expect_color(config.drawing.hand_colors[0], {1.0f, 0.0f, 0.5f});
     expect_color(config.drawing.hand_colors[1], overlay::Settings{}.hand_colors[1]);
     expect_color(config.drawing.contact_tint, {0.0f, 1.0f, 0.0f});
     EXPECT_EQ(config.drawing.ghost_alpha, 0.6f);
     EXPECT_FALSE(config.drawing.tint);
-    const layer::Config right = parse_config(R"({"colors": {"right": [0, 0, 1]}})", ".");
+    const layer::Config right = parse_config(R"({"colors": {"right": [0, 0, 1]}})");
     expect_color(right.drawing.hand_colors[1], {0.0f, 0.0f, 1.0f});
 }
 
@@ -70,7 +69,7 @@ class ConfigParseRejects : public ::testing::TestWithParam<BadDrawing> {};
 
 TEST_P(ConfigParseRejects, NamingTheKey) {
     try {
-        parse_config(GetParam().json, ".");
+        parse_config(GetParam().json);
         ADD_FAILURE() << "accepted";
     } catch (const std::runtime_error& e) {
         EXPECT_TRUE(std::string(e.what()).starts_with(GetParam().message)) << e.what();

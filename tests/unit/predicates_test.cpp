@@ -4,6 +4,7 @@
 
 #include <map>
 
+#include "quantile.h"
 #include "run_metrics.h"
 
 namespace physhand {

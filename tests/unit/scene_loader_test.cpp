@@ -86,14 +86,14 @@ json base_scene() {
 constexpr const char* kMinimalScene =
     R"({ "format": "physhand-scene/1", "name": "empty", "duration_s": 1, "colliders": [] })";
 
-// The message of the SceneError that parsing `text` throws ("" and a failure if none).
+// The message of the FormatError that parsing `text` throws ("" and a failure if none).
 std::string error_of_text(const std::string& text, const fs::path& base_dir = {}) {
     try {
         parse_scene(text, base_dir);
-    } catch (const SceneError& e) {
+    } catch (const FormatError& e) {
         return e.what();
     }
-    ADD_FAILURE() << "no SceneError for:\n" << text;
+    ADD_FAILURE() << "no FormatError for:\n" << text;
     return "";
 }
 
@@ -327,16 +327,16 @@ TEST(SceneLoader, FindColliderById) {
 struct ErrorCase {
     std::string name;
     std::function<void(json&)> edit;
-    std::string message;  // the start of SceneError::what()
+    std::string message;  // the start of FormatError::what()
 };
 
 void PrintTo(const ErrorCase& c, std::ostream* out) {
     *out << c.name;
 }
 
-class SceneErrors : public ::testing::TestWithParam<ErrorCase> {};
+class FormatErrors : public ::testing::TestWithParam<ErrorCase> {};
 
-TEST_P(SceneErrors, NamesThePathAndWhatWasExpected) {
+TEST_P(FormatErrors, NamesThePathAndWhatWasExpected) {
     json scene = base_scene();
     GetParam().edit(scene);
     EXPECT_THAT(error_of(scene), StartsWith(GetParam().message));
@@ -633,7 +633,7 @@ const ErrorCase kErrorCases[] = {
      "success[5].max_speed: expected a number > 0"},
 };
 
-INSTANTIATE_TEST_SUITE_P(SceneLoader, SceneErrors, ::testing::ValuesIn(kErrorCases),
+INSTANTIATE_TEST_SUITE_P(SceneLoader, FormatErrors, ::testing::ValuesIn(kErrorCases),
                          [](const auto& info) { return info.param.name; });
 
 // ---- Invalid JSON ---------------------------------------------------------------------
@@ -730,7 +730,7 @@ TEST(SceneLoader, RecordedTrackAcceptsCrLf) {
 struct TrackErrorCase {
     std::string name;
     std::function<std::string()> csv;
-    std::string message;  // contained in SceneError::what()
+    std::string message;  // contained in FormatError::what()
 };
 
 void PrintTo(const TrackErrorCase& c, std::ostream* out) {
@@ -826,14 +826,14 @@ TEST(SceneLoader, LoadSceneResolvesTracksBesideTheFile) {
     EXPECT_DOUBLE_EQ(scene.hand(HandSide::Right)->recorded[0].t, 0.5);
 }
 
-// The message of the SceneError that load_scene(file) throws.
+// The message of the FormatError that load_scene(file) throws.
 std::string load_error(const fs::path& file) {
     try {
         load_scene(file);
-    } catch (const SceneError& e) {
+    } catch (const FormatError& e) {
         return e.what();
     }
-    ADD_FAILURE() << "no SceneError for " << file;
+    ADD_FAILURE() << "no FormatError for " << file;
     return "";
 }
 

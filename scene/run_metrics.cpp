@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "quantile.h"
+
 namespace physhand {
 
 namespace {
@@ -15,15 +17,6 @@ constexpr double kTimeTolerance_s = 1e-6;
 // rest_jitter_mm counts a joint in the frames in which its ghost moved less than this.
 constexpr double kGhostAtRest_m = 1e-4;
 }  // namespace
-
-double quantile(std::vector<double> values, double q) {
-    if (values.empty()) return 0.0;
-    const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size()))) -
-                   (q > 0 ? 1 : 0);
-    const auto nth = values.begin() + static_cast<std::ptrdiff_t>(std::min(k, values.size() - 1));
-    std::nth_element(values.begin(), nth, values.end());
-    return *nth;
-}
 
 void RunMetrics::add_smoothness(HandHistory& h, double t, const HandPose& ghost,
                                 const HandPose& physical, bool touching) {

@@ -8,45 +8,14 @@
 #include <variant>
 #include <vector>
 
+#include "collider.h"
+#include "format_error.h"
 #include "hand_skeleton.h"
 #include "pose.h"
 
 namespace physhand {
 
 // Scene file, format physhand-scene/1 (docs/scene-format.md).
-
-enum class ShapeKind { Box, Sphere, Capsule, Cylinder, Convex, Mesh, Plane };
-enum class Motion { Static, Kinematic, Dynamic };
-
-struct Shape {
-    ShapeKind kind = ShapeKind::Box;
-    Vec3 half_extents = Vec3::Zero();         // box
-    double radius = 0.0;                      // sphere, capsule, cylinder
-    double half_height = 0.0;                 // capsule, cylinder (straight part, along local +Y)
-    std::vector<Vec3> vertices;               // convex, mesh
-    std::vector<std::array<int, 3>> indices;  // mesh
-    Vec3 normal = Vec3::UnitY();              // plane
-    double offset = 0.0;                      // plane: points p with normal·p = offset
-};
-
-struct TimedPose {
-    double t = 0.0;
-    Pose pose;
-};
-
-struct Collider {
-    std::string id;
-    Shape shape;
-    Motion motion = Motion::Static;
-    double mass = 0.0;  // dynamic only
-    double friction = 0.8;
-    double restitution = 0.0;
-    Pose pose;
-    std::vector<TimedPose> path;  // kinematic only; sorted by t
-
-    // Where a kinematic collider's path puts it at time t (its pose if it has no path).
-    Pose pose_at(double t) const;
-};
 
 enum class Interpolation { Linear, Smooth };
 
@@ -136,13 +105,7 @@ struct Scene {
     const Collider* find_collider(const std::string& id) const;
 };
 
-// A scene file that does not conform; what() names the JSON path and what was expected,
-// e.g. "colliders[2].half_extents: expected an array of 3 numbers".
-class SceneError : public std::runtime_error {
-  public:
-    using std::runtime_error::runtime_error;
-};
-
+// Both throw FormatError for a file that does not conform.
 Scene load_scene(const std::filesystem::path& file);
 // `base_dir` resolves recorded-track paths.
 Scene parse_scene(const std::string& json_text, const std::filesystem::path& base_dir);
