@@ -156,6 +156,7 @@ XrResult xrCreateInstance(const XrInstanceCreateInfo* createInfo, XrInstance* in
         }
         data.scene = load_played_scene();
         data.capture = capture_settings();
+        data.end_after_frame = whole_number_env("PHYSHAND_SIM_END_AFTER_FRAME", 1);
         *instance = rt.instances.add(std::move(data));
         return XR_SUCCESS;
     });

@@ -186,6 +186,9 @@ struct InstanceData {
     // Empty when there is no usable scene: hands are never active and sessions never end on
     // their own.
     std::optional<PlayedScene> scene;
+    // PHYSHAND_SIM_END_AFTER_FRAME=N: sessions begin to stop after display frame N, as at
+    // the scene's end, so a test that looks at one frame renders no more than it needs.
+    std::optional<std::int64_t> end_after_frame;
     std::deque<StateChange> events;  // delivered by xrPollEvent, oldest first
     DisplayClock display = DisplayClock::from_environment();
     std::int64_t frames_waited = 0;  // frames waited on `display`

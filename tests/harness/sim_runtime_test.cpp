@@ -361,6 +361,23 @@ TEST_F(SimRuntimeTest, ASceneLastsItsDurationAtAnyDisplayRate) {
     EXPECT_NEAR(physhand::clock_seconds(last - t0) + 0.05, 0.55, 1e-6);
 }
 
+// PHYSHAND_SIM_END_AFTER_FRAME=N ends the scene early: the session stops at the frame
+// after frame N, as it would at the scene's end.
+TEST_F(SimRuntimeTest, EndAfterFrameStopsTheSessionEarly) {
+    setenv("PHYSHAND_SIM_END_AFTER_FRAME", "5", 1);
+    ASSERT_EQ(create_instance(), XR_SUCCESS);
+    unsetenv("PHYSHAND_SIM_END_AFTER_FRAME");
+    XrSession running = focused_session();
+    int frames = 0;
+    bool stopping = false;
+    for (; frames < 100 && !stopping; ++frames) {
+        frame(running);
+        while (auto state = poll_state()) stopping |= *state == XR_SESSION_STATE_STOPPING;
+    }
+    EXPECT_TRUE(stopping);
+    EXPECT_EQ(frames, 6);
+}
+
 // PHYSHAND_SIM_HEADLESS_FRAME_LOOP=0: a headless session as Monado's, whose xrWaitFrame
 // gives no display time and counts as no wait; the time comes from the monotonic clock.
 TEST_F(SimRuntimeTest, HeadlessSessionsWithoutAFrameLoopTellTimeByTheMonotonicClock) {

@@ -191,7 +191,9 @@ XrResult xrWaitFrame(XrSession session, const XrFrameWaitInfo* frameWaitInfo,
         frameState->predictedDisplayPeriod = instance.display.period_ns;
         frameState->shouldRender =
             data->state == XR_SESSION_STATE_VISIBLE || data->state == XR_SESSION_STATE_FOCUSED;
-        if (instance.scene && scene_time(display_time) > instance.scene->duration_s) {
+        if ((instance.scene && scene_time(display_time) > instance.scene->duration_s) ||
+            (instance.end_after_frame &&
+             instance.display.frame_slot(display_time) > *instance.end_after_frame)) {
             queue_stopping(instance, session, *data);
         }
         return XR_SUCCESS;
