@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates BENCHMARKS.md and bench/ (CSV + one SVG per scene): every drive over
-# 1..16 substeps on the measurement scenes, scaling with the number of colliders, the
+# 1..16 substeps on the measurement scenes, scaling with the number of colliders (and the
+# raw-Bullet floor under it, and a callgrind profile of the piles), the
 # layer's overhead per call (bench/overhead.json), and the stress figures of every drive
 # over STRESS_SEEDS (default 1-100) of pathological tracking and the extreme parameters, and
 # the robustness benchmark (variants of the sample tasks, SEEDS seeds each, default 3), and
@@ -13,6 +14,7 @@ build=$("$root/scripts/build.sh" | tail -n 1)
 out=$(mktemp -d)
 "$build/tests/physhand-sweep" --out "$out" --repeat "${REPEAT:-3}"
 "$build/tests/physhand-scaling" --out "$out" --repeat "${REPEAT:-3}"
+"$root/scripts/profile-piles.sh" "$build" >"$out/profile.md"
 "$build/tests/physhand-robustness" --out "$out" --repeat "${SEEDS:-3}" >/dev/null
 "$build/tests/physhand-display-rates" --out "$out" --repeat "${REPEAT:-3}" >/dev/null
 "$build/tests/physhand-overhead" --benchmark_repetitions="${REPEAT:-3}" \
@@ -29,6 +31,12 @@ cp "$out"/*.csv "$out"/*.svg "$out/overhead.json" "$root/bench/"
     echo "Measured $(date -u +%Y-%m-%d) on $(nproc) cores ($(lscpu | sed -n 's/^Model name: *//p' | head -1)), \`REPEAT=${REPEAT:-3} scripts/benchmark.sh\`."
     echo
     cat "$out/sweep.md" "$out/scaling.md"
+    echo
+    echo "## Where a pile's step goes"
+    echo
+    echo "\`scripts/profile-piles.sh\`: callgrind's inclusive instruction counts in the scaling benchmark's both-hands piles of 10 and 50 cubes (default drive), each part as a share of the whole physics step; the parts marked physhand are the project's own, the rest is Bullet's (Debian's build: no SIMD, one thread). Narrowphase includes the capsule–box and box–box rows below it; allocation counts every allocation of the run."
+    echo
+    cat "$out/profile.md"
     echo
     echo "## Robustness"
     echo

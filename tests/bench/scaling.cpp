@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -12,6 +13,7 @@
 
 #include "bench_options.h"
 #include "quantile.h"
+#include "raw_bullet_floor.h"
 #include "run_metrics.h"
 #include "scene.h"
 #include "scene_run.h"
@@ -122,6 +124,12 @@ std::string fmt(double v, const char* f = "%.0f") {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // --profile-pile N: plays the both-hands pile of N cubes once and writes nothing, for a
+    // profiler to watch (scripts/profile-piles.sh).
+    if (argc == 3 && std::string(argv[1]) == "--profile-pile") {
+        run_scene(pile_scene(std::atoi(argv[2]), Placement::BothInContact), RunOptions{});
+        return 0;
+    }
     const auto options = bench::parse_options(argc, argv, "physhand-scaling", PHYSHAND_SCENES_DIR);
     if (!options) return 2;
     const fs::path& out = options->out;
@@ -129,15 +137,22 @@ int main(int argc, char** argv) {
     const int repeat = options->repeat;
     std::ofstream csv(out / "scaling.csv");
     csv << "placement,dynamic_colliders,step_us_median,left_touching,right_touching\n";
+    std::ofstream floor_csv(out / "scaling_floor.csv");
+    floor_csv << "dynamic_colliders,both_hands_in_contact_us,both_hands_far_us\n";
     std::ofstream md(out / "scaling.md");
     md << "\n## Scaling\n\nstep_us median (default drive) against the number of dynamic 4 cm cubes "
           "piled on a table; the hands press into the pile side by side and sweep through it for "
           "6 s (the pile starts at rest, and sleeps once settled unless a hand is in it). In "
-          "brackets: the share of frames in which the left / right hand touched a cube.\n\n"
+          "brackets: the share of frames in which the left / right hand touched a cube. The "
+          "last two columns are the floor of the present design under the both-hands-in-contact "
+          "and both-hands-far scenes: the same table and cubes in a plain Bullet world with "
+          "Bullet's defaults, one step a frame, each hand a kinematic palm box and finger "
+          "capsules set to its ghost (tests/bench/raw_bullet_floor); what lies above it is "
+          "physhand's own cost.\n\n"
           "![scaling](bench/scaling.svg)\n\n| dynamic colliders |";
     for (Placement p : {Placement::BothInContact, Placement::OneNear, Placement::BothFar})
         md << ' ' << name_of(p) << " |";
-    md << "\n|---|---|---|---|\n";
+    md << " raw Bullet, both in contact | raw Bullet, both far |\n|---|---|---|---|---|---|\n";
     SvgPlot plot("Scaling: cost against dynamic colliders", "dynamic colliders (+1)",
                  "step_us median", "colliders");
     std::vector<std::vector<SvgPlot::Point>> series(3);
@@ -156,6 +171,16 @@ int main(int argc, char** argv) {
                << fmt(100 * t[k].touching[1]) << " %) |";
             series[k].push_back({n + 1.0, t[k].step_us, std::to_string(n), false, false});
         }
+        floor_csv << n;
+        for (std::size_t k : {std::size_t{0}, std::size_t{2}}) {
+            std::vector<double> floor;
+            for (int i = 0; i < (n >= 200 ? 1 : repeat); ++i)
+                floor.push_back(bench::raw_bullet_step_us(runs[k].first));
+            const double floor_us = quantile(floor, 0.5);
+            floor_csv << ',' << floor_us;
+            md << ' ' << fmt(floor_us) << " |";
+        }
+        floor_csv << '\n';
         md << '\n';
     }
     for (std::size_t k = 0; k < kPlacements.size(); ++k)
