@@ -224,11 +224,7 @@ TEST_F(HandTracking, HandIsBlockedByAStaticBox) {
 // stays on the desk the hand rests on (the runtime's wrist is 18 mm round, the palm box it
 // lies in 19 mm thick). The ghost's are the runtime's own.
 TEST_F(HandTracking, ReturnedJointSpheresRestOnTheDeskNotInIt) {
-    use_scene(scene_with_hands({{"right", pressing_hand(0.1)}}));
-    ASSERT_EQ(create_instance(), XR_SUCCESS);
-    start_session();
-    frame();
-    create_desk();
+    ASSERT_NO_FATAL_FAILURE(start_with_desk(scene_with_hands({{"right", pressing_hand(0.1)}})));
     const XrHandTrackerEXT right = hand_tracker(XR_HAND_RIGHT_EXT);
     HandJoints hand;
     double deepest = 0.0;
@@ -257,11 +253,7 @@ TEST_F(HandTracking, ReturnedJointSpheresRestOnTheDeskNotInIt) {
 TEST_F(HandTracking, TrackingDropoutKeepsTheHandFiniteAndItRecovers) {
     auto scene = scene_with_hands({{"right", pressing_hand(0.1)}});
     scene["tracking"] = {{"dropouts", {{{"hand", "right"}, {"from_s", 1.5}, {"to_s", 1.7}}}}};
-    use_scene(scene);
-    ASSERT_EQ(create_instance(), XR_SUCCESS);
-    start_session();
-    frame();
-    create_desk();
+    ASSERT_NO_FATAL_FAILURE(start_with_desk(scene));
     const XrHandTrackerEXT right = hand_tracker(XR_HAND_RIGHT_EXT);
     int lost_frames = 0;
     HandJoints hand;
@@ -286,11 +278,7 @@ TEST_F(HandTracking, TrackingDropoutKeepsTheHandFiniteAndItRecovers) {
 // The simulation follows the first tracker of a hand; when it goes, the next one takes
 // over and the hand stays physical.
 TEST_F(HandTracking, ASecondTrackerOfAHandKeepsWorkingWhenTheFirstIsDestroyed) {
-    use_scene(scene_with_hands({{"right", pressing_hand(0.1)}}));
-    ASSERT_EQ(create_instance(), XR_SUCCESS);
-    start_session();
-    frame();
-    create_desk();
+    ASSERT_NO_FATAL_FAILURE(start_with_desk(scene_with_hands({{"right", pressing_hand(0.1)}})));
     const XrHandTrackerEXT first = hand_tracker(XR_HAND_RIGHT_EXT);
     const XrHandTrackerEXT second = hand_tracker(XR_HAND_RIGHT_EXT);
     HandJoints a, b;
@@ -313,11 +301,7 @@ TEST_F(HandTracking, ASecondTrackerOfAHandKeepsWorkingWhenTheFirstIsDestroyed) {
 
 // A hand the runtime never tracks stays inactive, colliders or not.
 TEST_F(HandTracking, AnUntrackedHandStaysInactive) {
-    use_scene(scene_with_hands({{"right", pressing_hand(0.1)}}));
-    ASSERT_EQ(create_instance(), XR_SUCCESS);
-    start_session();
-    frame();
-    create_desk();
+    ASSERT_NO_FATAL_FAILURE(start_with_desk(scene_with_hands({{"right", pressing_hand(0.1)}})));
     const XrHandTrackerEXT left = hand_tracker(XR_HAND_LEFT_EXT);
     HandJoints hand;
     for (int f = 0; f < 30; ++f) {

@@ -638,6 +638,14 @@ XrPhysicalColliderPHYSHAND LayerTest::create_desk() {
     return create_collider(info);
 }
 
+void LayerTest::start_with_desk(const nlohmann::json& scene) {
+    use_scene(scene);
+    ASSERT_EQ(create_instance(), XR_SUCCESS);
+    start_session();
+    frame();
+    create_desk();
+}
+
 XrResult LayerTest::locate_colliders(const std::vector<XrPhysicalColliderPHYSHAND>& colliders,
                                      XrSpace base, XrTime time,
                                      std::vector<XrPhysicalColliderLocationPHYSHAND>& out,

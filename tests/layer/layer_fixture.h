@@ -251,6 +251,9 @@ class LayerTest : public ::testing::Test {
                                                XrSession session = XR_NULL_HANDLE);
     // A static desk (kDeskCenter, kDeskHalfExtents) in STAGE.
     XrPhysicalColliderPHYSHAND create_desk();
+    // The runtime playing `scene`, an instance and a running session with one frame done,
+    // and the desk declared.
+    void start_with_desk(const nlohmann::json& scene);
     XrResult locate_colliders(const std::vector<XrPhysicalColliderPHYSHAND>& colliders,
                               XrSpace base, XrTime time,
                               std::vector<XrPhysicalColliderLocationPHYSHAND>& out,

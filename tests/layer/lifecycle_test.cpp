@@ -227,11 +227,8 @@ nlohmann::json repeatedly_pressing_hand(int cycles) {
 // spring (1000 N/m unless the app says otherwise): pressing 3 cm into the desk shows which
 // one is on.
 TEST_F(Lifecycle, HandDriveSwitchesToPaperAndBack) {
-    use_scene(scene_with_hands({{"right", repeatedly_pressing_hand(4)}}));
-    ASSERT_EQ(create_instance(), XR_SUCCESS);
-    start_session();
-    frame();
-    create_desk();
+    ASSERT_NO_FATAL_FAILURE(
+        start_with_desk(scene_with_hands({{"right", repeatedly_pressing_hand(4)}})));
     const XrHandTrackerEXT right = hand_tracker(XR_HAND_RIGHT_EXT);
     HandJoints hand;
     int frame_count = 0;
@@ -294,11 +291,7 @@ TEST_F(Lifecycle, HandDriveSwitchesToPaperAndBack) {
 // the desk is never clear, so the physical hand sinks into the desk and stays there for as
 // long as the user presses. Enable once the rebuilt hand is seated where the old one was.
 TEST_F(Lifecycle, DriveChangeWhilePressingKeepsTheHandOnTheDesk) {
-    use_scene(scene_with_hands({{"right", pressing_hand(0.1)}}));
-    ASSERT_EQ(create_instance(), XR_SUCCESS);
-    start_session();
-    frame();
-    create_desk();
+    ASSERT_NO_FATAL_FAILURE(start_with_desk(scene_with_hands({{"right", pressing_hand(0.1)}})));
     const XrHandTrackerEXT right = hand_tracker(XR_HAND_RIGHT_EXT);
     HandJoints hand;
     for (int f = 0; f < 150; ++f) ASSERT_EQ(locate(right, stage_, frame(), hand), XR_SUCCESS);

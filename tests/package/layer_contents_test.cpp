@@ -1,6 +1,8 @@
-// What the layer's shared library carries into every app: one exported function, the
-// simulation core and the collider syntax of its config, and none of the scene player
-// (scene files, tracking scripts, predicates, metrics), which lives in its own library.
+// What the layer's shared libraries carry into every app: the one the loader loads exports
+// one function and carries nothing but the opening of the layer proper; the layer proper
+// exports the same function alone and carries the simulation core and the collider syntax
+// of its config, and none of the scene player (scene files, tracking scripts, predicates,
+// metrics), which lives in its own library.
 
 #include <gtest/gtest.h>
 
@@ -12,7 +14,8 @@
 
 namespace {
 
-constexpr const char* kLayer = PHYSHAND_LAYER_LIBRARY;
+constexpr const char* kShim = PHYSHAND_LAYER_LIBRARY;
+constexpr const char* kLayer = PHYSHAND_LAYER_IMPL_LIBRARY;
 
 // The lines `command` prints; fails the test when it fails.
 std::vector<std::string> lines_of(const std::string& command) {
@@ -39,10 +42,20 @@ bool any_contains(const std::vector<std::string>& lines, const std::string& text
 }
 
 TEST(LayerContents, ExportsOnlyTheLoaderNegotiation) {
-    const std::vector<std::string> exported =
-        lines_of(std::string("nm -D --defined-only ") + kLayer);
-    ASSERT_EQ(exported.size(), 1u) << "exported:\n" << testing::PrintToString(exported);
-    EXPECT_TRUE(exported[0].ends_with(" T xrNegotiateLoaderApiLayerInterface")) << exported[0];
+    for (const char* library : {kShim, kLayer}) {
+        const std::vector<std::string> exported =
+            lines_of(std::string("nm -D --defined-only ") + library);
+        ASSERT_EQ(exported.size(), 1u) << library << " exports:\n"
+                                       << testing::PrintToString(exported);
+        EXPECT_TRUE(exported[0].ends_with(" T xrNegotiateLoaderApiLayerInterface")) << exported[0];
+    }
+}
+
+TEST(LayerContents, TheLoadedLibraryOnlyOpensTheLayerProper) {
+    const std::vector<std::string> symbols = lines_of(std::string("nm -C ") + kShim);
+    EXPECT_TRUE(any_contains(symbols, "open_layer"));
+    EXPECT_FALSE(any_contains(symbols, "physhand::"));
+    EXPECT_FALSE(any_contains(lines_of(std::string("ldd ") + kShim), "libBullet"));
 }
 
 TEST(LayerContents, CarriesTheSimulationAndColliderSyntaxButNoScenePlayer) {
