@@ -80,6 +80,7 @@ NextDispatch make_next_dispatch(XrInstance instance, PFN_xrGetInstanceProcAddr n
     required(next.DestroySpace, "xrDestroySpace");
     required(next.LocateSpace, "xrLocateSpace");
     required(next.GetSystemProperties, "xrGetSystemProperties");
+    required(next.EnumerateViewConfigurationViews, "xrEnumerateViewConfigurationViews");
     required(next.EndFrame, "xrEndFrame");
     required(next.EnumerateSwapchainFormats, "xrEnumerateSwapchainFormats");
     required(next.CreateSwapchain, "xrCreateSwapchain");

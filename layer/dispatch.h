@@ -21,6 +21,7 @@ struct NextDispatch {
     PFN_xrDestroySpace DestroySpace = nullptr;
     PFN_xrLocateSpace LocateSpace = nullptr;
     PFN_xrGetSystemProperties GetSystemProperties = nullptr;
+    PFN_xrEnumerateViewConfigurationViews EnumerateViewConfigurationViews = nullptr;
     PFN_xrEndFrame EndFrame = nullptr;
     PFN_xrEnumerateSwapchainFormats EnumerateSwapchainFormats = nullptr;
     PFN_xrCreateSwapchain CreateSwapchain = nullptr;

@@ -87,9 +87,9 @@ const XrCompositionLayerProjection* draw_overlay(SessionState& state, const XrFr
     }
     // Created with the first frame that has hands to draw: sessions without them pay nothing.
     if (!state.overlay) {
-        state.overlay =
-            std::make_unique<OverlaySession>(state.instance->next, state.session, *state.vulkan,
-                                             state.graphics, state.instance->config.drawing);
+        state.overlay = std::make_unique<OverlaySession>(
+            state.instance->next, state.session, *state.vulkan, state.graphics,
+            state.recommended_views, state.instance->config.drawing);
     }
     return state.overlay->draw(*app_layer, hands);
 }

@@ -5,6 +5,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "hand_skeleton.h"
 #include "layer_log.h"
@@ -38,10 +39,6 @@ VkFormat pick_format(const NextDispatch& next, XrSession session) {
     throw std::runtime_error("the runtime offers no 8-bit sRGB swapchain format");
 }
 
-bool same_extent(const VkExtent2D& a, const VkExtent2D& b) {
-    return a.width == b.width && a.height == b.height;
-}
-
 overlay::Eye to_eye(const XrPosef& pose, const XrFovf& fov) {
     return {{pose.position.x, pose.position.y, pose.position.z},
             {pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w},
@@ -66,10 +63,12 @@ std::array<int, overlay::kJointCount> joint_parents() {
 OverlaySession::OverlaySession(const NextDispatch& next, XrSession session,
                                const VulkanBinding& binding,
                                const XrSystemGraphicsProperties& limits,
+                               std::vector<VkExtent2D> recommended,
                                const overlay::Settings& drawing)
     : next_(next),
       session_(session),
       limits_(limits),
+      recommended_(std::move(recommended)),
       format_(pick_format(next, session)),
       settings_(drawing) {
     const char* stats = std::getenv("PHYSHAND_OVERLAY_STATS");
@@ -95,7 +94,7 @@ OverlaySession::~OverlaySession() {
                                       std::to_string(gpu_us_.size()) + " frames";
     log_once("overlay per drawn frame: CPU time in xrEndFrame median " +
              std::to_string(quantile(cpu_us_, 0.5)) + " us over " + std::to_string(cpu_us_.size()) +
-             " frames; GPU time " + gpu);
+             " frames; GPU time " + gpu + "; swapchains made " + std::to_string(swapchains_made_));
 }
 
 void OverlaySession::record_drawn_frame(Clock::duration elapsed) {
@@ -122,13 +121,29 @@ void OverlaySession::destroy_swapchain() noexcept {
     swapchain_ = XR_NULL_HANDLE;
     images_.clear();
     extents_.clear();
+    swapchain_size_ = {};
 }
 
-// One array swapchain with a layer per view, recreated when the app's views change size.
+// One array swapchain with a layer per view, made once for the largest of the app's views
+// and the runtime's recommended sizes, and again only for views that outgrow it: views
+// that change size (dynamic resolution) are drawn into its top left.
 void OverlaySession::ensure_swapchain(std::vector<VkExtent2D> extents) {
-    if (swapchain_ != XR_NULL_HANDLE &&
-        std::equal(extents.begin(), extents.end(), extents_.begin(), extents_.end(), same_extent)) {
+    const auto fits = [&](const VkExtent2D& e) {
+        return e.width <= swapchain_size_.width && e.height <= swapchain_size_.height;
+    };
+    if (swapchain_ != XR_NULL_HANDLE && extents.size() == extents_.size() &&
+        std::all_of(extents.begin(), extents.end(), fits)) {
+        extents_ = std::move(extents);
         return;
+    }
+    VkExtent2D size = swapchain_ != XR_NULL_HANDLE ? swapchain_size_ : VkExtent2D{};
+    for (const VkExtent2D& e : extents) {
+        size.width = std::max(size.width, e.width);
+        size.height = std::max(size.height, e.height);
+    }
+    for (const VkExtent2D& e : recommended_) {
+        size.width = std::min(std::max(size.width, e.width), limits_.maxSwapchainImageWidth);
+        size.height = std::min(std::max(size.height, e.height), limits_.maxSwapchainImageHeight);
     }
     destroy_swapchain();
     XrSwapchainCreateInfo info{};
@@ -136,10 +151,8 @@ void OverlaySession::ensure_swapchain(std::vector<VkExtent2D> extents) {
     info.usageFlags = XR_SWAPCHAIN_USAGE_COLOR_ATTACHMENT_BIT;
     info.format = format_;
     info.sampleCount = 1;
-    for (const VkExtent2D& e : extents) {
-        info.width = std::max(info.width, e.width);
-        info.height = std::max(info.height, e.height);
-    }
+    info.width = size.width;
+    info.height = size.height;
     info.faceCount = 1;
     info.arraySize = static_cast<uint32_t>(extents.size());
     info.mipCount = 1;
@@ -155,6 +168,8 @@ void OverlaySession::ensure_swapchain(std::vector<VkExtent2D> extents) {
               reinterpret_cast<XrSwapchainImageBaseHeader*>(images.data())),
           "xrEnumerateSwapchainImages");
     for (const XrSwapchainImageVulkanKHR& image : images) images_.push_back(image.image);
+    swapchain_size_ = size;
+    ++swapchains_made_;
     extents_ = std::move(extents);
 }
 

@@ -18,9 +18,11 @@ namespace physhand::layer {
 
 class OverlaySession {
   public:
-    // `limits`: the system's, the largest swapchain among them.
+    // `limits`: the system's, the largest swapchain among them; `recommended`: the
+    // runtime's recommended view sizes, the least the swapchain is made for.
     OverlaySession(const NextDispatch& next, XrSession session, const VulkanBinding& binding,
-                   const XrSystemGraphicsProperties& limits, const overlay::Settings& drawing);
+                   const XrSystemGraphicsProperties& limits, std::vector<VkExtent2D> recommended,
+                   const overlay::Settings& drawing);
     // Waits for the GPU, then destroys the swapchain (the session must still exist); logs
     // the medians when PHYSHAND_OVERLAY_STATS=1.
     ~OverlaySession();
@@ -46,13 +48,16 @@ class OverlaySession {
     const NextDispatch& next_;
     const XrSession session_;
     const XrSystemGraphicsProperties limits_;
+    const std::vector<VkExtent2D> recommended_;
     VkFormat format_ = VK_FORMAT_UNDEFINED;
     std::unique_ptr<overlay::Renderer> renderer_;
     overlay::Settings settings_;
 
     XrSwapchain swapchain_ = XR_NULL_HANDLE;  // one array layer per view
+    VkExtent2D swapchain_size_{};
+    int swapchains_made_ = 0;
     std::vector<VkImage> images_;
-    std::vector<VkExtent2D> extents_;  // per view: the app's view size
+    std::vector<VkExtent2D> extents_;  // per view: the app's view size, drawn at the top left
 
     std::vector<overlay::View> views_;
     std::vector<XrCompositionLayerProjectionView> layer_views_;

@@ -95,6 +95,34 @@ void read_system(SessionState& state, XrSystemId system) {
     state.hand_tracking = properties.next != nullptr && hand_tracking.supportsHandTracking;
 }
 
+// The system's recommended view sizes for its primary stereo or mono views; empty when
+// the runtime tells neither.
+std::vector<VkExtent2D> recommended_views(const SessionState& state, XrSystemId system) {
+    const NextDispatch& next = state.instance->next;
+    for (const XrViewConfigurationType type :
+         {XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO, XR_VIEW_CONFIGURATION_TYPE_PRIMARY_MONO}) {
+        uint32_t count = 0;
+        if (XR_FAILED(next.EnumerateViewConfigurationViews(state.instance->instance, system, type,
+                                                           0, &count, nullptr)) ||
+            count == 0) {
+            continue;
+        }
+        XrViewConfigurationView blank{};
+        blank.type = XR_TYPE_VIEW_CONFIGURATION_VIEW;
+        std::vector<XrViewConfigurationView> views(count, blank);
+        if (XR_FAILED(next.EnumerateViewConfigurationViews(state.instance->instance, system, type,
+                                                           count, &count, views.data()))) {
+            continue;
+        }
+        std::vector<VkExtent2D> sizes;
+        for (const XrViewConfigurationView& view : views) {
+            sizes.push_back({view.recommendedImageRectWidth, view.recommendedImageRectHeight});
+        }
+        return sizes;
+    }
+    return {};
+}
+
 // The overlay needs the app's Vulkan objects and room for one more composition layer.
 // Without them the session runs unchanged, without the overlay.
 void set_up_overlay(SessionState& state, const XrSessionCreateInfo& info) {
@@ -107,6 +135,7 @@ void set_up_overlay(SessionState& state, const XrSessionCreateInfo& info) {
         if (state.graphics.maxLayerCount == 0) {
             throw std::runtime_error("the system's composition layer count is unknown");
         }
+        state.recommended_views = recommended_views(state, info.systemId);
     } catch (const std::exception& e) {
         state.vulkan.reset();
         log_failure("xrCreateSession (the hands are not drawn)", e.what());

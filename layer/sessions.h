@@ -79,6 +79,9 @@ class SessionState {
     std::optional<VulkanBinding> vulkan;
     // The system's: room for the overlay's extra layer, its largest swapchain.
     XrSystemGraphicsProperties graphics{};
+    // The runtime's recommended view sizes (primary stereo, else mono; empty when it does
+    // not say), to size the overlay's swapchain once.
+    std::vector<VkExtent2D> recommended_views;
     std::unique_ptr<OverlaySession> overlay;  // created with the first frame it draws
     std::vector<const XrCompositionLayerBaseHeader*> submitted_layers;  // the app's + overlay
 

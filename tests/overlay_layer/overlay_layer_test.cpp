@@ -333,7 +333,7 @@ class OverlayLayerTest : public ::testing::Test {
                 zeroed<XrCompositionLayerProjectionView>(XR_TYPE_COMPOSITION_LAYER_PROJECTION_VIEW);
             projection_views[i].pose = views_[i].pose;
             projection_views[i].fov = views_[i].fov;
-            projection_views[i].subImage = {swapchain_, {{0, 0}, {kSize, kSize}}, 0};
+            projection_views[i].subImage = {swapchain_, {{0, 0}, {view_size_, view_size_}}, 0};
         }
         auto layer = zeroed<XrCompositionLayerProjection>(XR_TYPE_COMPOSITION_LAYER_PROJECTION);
         layer.space = space_;
@@ -384,7 +384,8 @@ class OverlayLayerTest : public ::testing::Test {
     std::vector<VkImage> images_;
     std::array<XrView, 2> views_{};
     XrVector3f wrist_{};
-    std::atomic<XrTime> display_time_ = 0;                  // of the latest frame
+    std::int32_t view_size_ = kSize;        // of the app's views, at the swapchain's top left
+    std::atomic<XrTime> display_time_ = 0;  // of the latest frame
     std::chrono::steady_clock::duration end_frame_took_{};  // its xrEndFrame
     VkInstance vk_instance_ = VK_NULL_HANDLE;
     VkPhysicalDevice physical_device_ = VK_NULL_HANDLE;
@@ -505,6 +506,33 @@ TEST_F(OverlayLayerTest, LocatesFromAnotherThreadDoNotWaitForTheOverlaysDrawing)
     RecordProperty(
         "longest_locate_us",
         std::to_string(std::chrono::duration_cast<std::chrono::microseconds>(longest).count()));
+}
+
+// An app whose views change size every few frames (dynamic resolution) gets the hands drawn
+// at every size, from the one swapchain the overlay made for the runtime's recommended size.
+TEST_F(OverlayLayerTest, ViewsThatChangeSizeReuseTheOverlaysSwapchain) {
+    write_config(box_config());
+    setenv("PHYSHAND_OVERLAY_STATS", "1", 1);
+    ASSERT_NO_FATAL_FAILURE(start());
+    testing::internal::CaptureStderr();
+    // The hand comes to rest on the box, tinted where it touches.
+    for (int i = 0; i < kFrames; ++i) ASSERT_NO_FATAL_FAILURE(frame());
+    for (const std::int32_t size : {kSize / 2, kSize * 3 / 4, kSize / 4, kSize}) {
+        view_size_ = size;
+        for (int i = 0; i < 3; ++i) ASSERT_NO_FATAL_FAILURE(frame());
+        const PngImage png = last_capture();
+        ASSERT_GT(png.width, 0u);
+        EXPECT_GT(count_near_wrist(png, views_[0], wrist_,
+                                   [&](int x, int y) { return is_tint(png.at(x, y)); }),
+                  0)
+            << "views of " << size << " pixels";
+    }
+    // The overlay's figures, said when the session ends.
+    xrDestroySession(session_);
+    session_ = XR_NULL_HANDLE;
+    const std::string log = testing::internal::GetCapturedStderr();
+    unsetenv("PHYSHAND_OVERLAY_STATS");
+    EXPECT_NE(log.find("swapchains made 1\n"), std::string::npos) << log;
 }
 
 // Pixels that are not the app's colour.
