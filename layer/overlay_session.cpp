@@ -94,7 +94,9 @@ OverlaySession::~OverlaySession() {
                                       std::to_string(gpu_us_.size()) + " frames";
     log_once("overlay per drawn frame: CPU time in xrEndFrame median " +
              std::to_string(quantile(cpu_us_, 0.5)) + " us over " + std::to_string(cpu_us_.size()) +
-             " frames; GPU time " + gpu + "; swapchains made " + std::to_string(swapchains_made_));
+             " frames; GPU time " + gpu + "; GPU memory " +
+             std::to_string(renderer_->memory_bytes() / (1024 * 1024)) + " MB; swapchains made " +
+             std::to_string(swapchains_made_));
 }
 
 void OverlaySession::record_drawn_frame(Clock::duration elapsed) {
@@ -141,7 +143,8 @@ void OverlaySession::ensure_swapchain(std::vector<VkExtent2D> extents) {
         size.width = std::max(size.width, e.width);
         size.height = std::max(size.height, e.height);
     }
-    for (const VkExtent2D& e : recommended_) {
+    for (const VkExtent2D& recommended : recommended_) {
+        const VkExtent2D e = overlay::drawn_extent(recommended);
         size.width = std::min(std::max(size.width, e.width), limits_.maxSwapchainImageWidth);
         size.height = std::min(std::max(size.height, e.height), limits_.maxSwapchainImageHeight);
     }

@@ -6,6 +6,8 @@
 #include <iterator>
 #include <numbers>
 
+#include "overlay_renderer.h"
+
 namespace physhand::layer {
 
 namespace {
@@ -41,7 +43,8 @@ std::optional<std::vector<VkExtent2D>> overlay_extents(
         const XrCompositionLayerProjectionView& view = app_layer.views[i];
         if (!drawable(view, limits)) return std::nullopt;
         const XrExtent2Di& size = view.subImage.imageRect.extent;
-        extents.push_back({static_cast<uint32_t>(size.width), static_cast<uint32_t>(size.height)});
+        extents.push_back(overlay::drawn_extent(
+            {static_cast<uint32_t>(size.width), static_cast<uint32_t>(size.height)}));
     }
     return extents;
 }

@@ -11,7 +11,8 @@
 namespace physhand::layer {
 
 // The overlay's image size for each of the app's views: the view's own rect, so the
-// overlay is as sharp as the app. Nullopt when a view cannot be drawn for: an empty or
+// overlay is as sharp as the app, up to overlay::kMaxDrawnPixels (overlay::drawn_extent).
+// Nullopt when a view cannot be drawn for: an empty or
 // negative rect, one larger than the system's largest swapchain (`limits`), a non-finite
 // pose, or a field of view that is not finite, is empty or inverted, or reaches ±90° (no
 // projection takes it); the overlay then skips the frame. `app_layer.views` holds

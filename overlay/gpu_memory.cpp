@@ -61,6 +61,7 @@ HostBuffer create_host_buffer(const DeviceContext& context, VkDeviceSize size,
         // GPU a read over the bus; plain host memory works everywhere.
         result.memory =
             allocate(context, requirements, kHost | VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, kHost);
+        result.memory_size = requirements.size;
         PHYSHAND_VK_CHECK(vk.vkBindBufferMemory(context.device, result.buffer, result.memory, 0));
         PHYSHAND_VK_CHECK(
             vk.vkMapMemory(context.device, result.memory, 0, VK_WHOLE_SIZE, 0, &result.mapped));
@@ -104,6 +105,7 @@ TransientAttachment create_transient_attachment(const DeviceContext& context, Vk
             allocate(context, requirements,
                      VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | VK_MEMORY_PROPERTY_LAZILY_ALLOCATED_BIT,
                      VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+        result.memory_size = requirements.size;
         PHYSHAND_VK_CHECK(vk.vkBindImageMemory(context.device, result.image, result.memory, 0));
         VkImageViewCreateInfo view_info{};
         view_info.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;

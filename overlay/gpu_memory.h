@@ -11,6 +11,7 @@ namespace physhand::overlay {
 struct HostBuffer {
     VkBuffer buffer = VK_NULL_HANDLE;
     VkDeviceMemory memory = VK_NULL_HANDLE;
+    VkDeviceSize memory_size = 0;  // bytes allocated
     void* mapped = nullptr;
 };
 
@@ -23,6 +24,7 @@ void destroy(const DeviceContext& context, HostBuffer& buffer);
 struct TransientAttachment {
     VkImage image = VK_NULL_HANDLE;
     VkDeviceMemory memory = VK_NULL_HANDLE;
+    VkDeviceSize memory_size = 0;  // bytes allocated
     VkImageView view = VK_NULL_HANDLE;
 };
 

@@ -42,6 +42,8 @@ class RenderTargets {
     VkDescriptorSet resolve_input() const { return resolve_input_; }
     // Destroys what belongs to `image` (no pending GPU work may use it).
     void forget(VkImage image);
+    // Device memory of the multisampled attachments, bytes.
+    VkDeviceSize memory_bytes() const { return color_.memory_size + depth_.memory_size; }
 
   private:
     struct Target {

@@ -1,5 +1,6 @@
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <optional>
@@ -344,6 +345,20 @@ void Renderer::wait_idle() {
 void Renderer::forget_image(VkImage image) {
     impl_->wait_idle();
     impl_->targets->forget(image);
+}
+
+VkExtent2D drawn_extent(VkExtent2D view) {
+    const double pixels = static_cast<double>(view.width) * view.height;
+    if (pixels <= static_cast<double>(kMaxDrawnPixels)) return view;
+    const double scale = std::sqrt(static_cast<double>(kMaxDrawnPixels) / pixels);
+    return {std::max(1u, static_cast<uint32_t>(view.width * scale)),
+            std::max(1u, static_cast<uint32_t>(view.height * scale))};
+}
+
+uint64_t Renderer::memory_bytes() const {
+    uint64_t bytes = impl_->mesh.memory_size + impl_->targets->memory_bytes();
+    for (const auto& slot : impl_->slots) bytes += slot.instances.memory_size;
+    return bytes;
 }
 
 Timings Renderer::timings() const {

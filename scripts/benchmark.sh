@@ -15,6 +15,11 @@ out=$(mktemp -d)
 "$build/tests/physhand-sweep" --out "$out" --repeat "${REPEAT:-3}"
 "$build/tests/physhand-scaling" --out "$out" --repeat "${REPEAT:-3}"
 "$root/scripts/profile-piles.sh" "$build" >"$out/profile.md"
+lavapipe=$(ls /usr/share/vulkan/icd.d/lvp_icd.*.json | head -n 1)
+for size in "1024 1024" "2064 2208"; do
+    # shellcheck disable=SC2086  # two numbers
+    VK_ICD_FILENAMES=$lavapipe "$build/tests/overlay/physhand-overlay-bench" --frames 30 --size $size
+done >"$out/overlay.jsonl"
 "$build/tests/physhand-robustness" --out "$out" --repeat "${SEEDS:-3}" >/dev/null
 "$build/tests/physhand-display-rates" --out "$out" --repeat "${REPEAT:-3}" >/dev/null
 "$build/tests/physhand-overhead" --benchmark_repetitions="${REPEAT:-3}" \
@@ -49,6 +54,14 @@ cp "$out"/*.csv "$out"/*.svg "$out/overhead.json" "$root/bench/"
     echo "\`physhand-display-rates\`: the scenes shown at each display rate and at 90 Hz with each frame up to 2 ms early or late (\`physhand-scene --display-hz R --frame-jitter-ms J\`); the physics steps its own 90 Hz frames whatever the display. free_motion's tracking_error_rms_mm, jerk_rms of the returned wrist and fingertips beside the ghost's (ghost_jerk_rms), repeated_pose_frames and step_us_median (one display frame's call, median of ${REPEAT:-3} runs; at 120 and 144 Hz some calls step no physics frame), then how many of throw, sphere, displacement, stack and lift_hold succeed."
     echo
     cat "$out/display_rates.md"
+    echo
+    echo "## The overlay's memory and time"
+    echo
+    echo "\`physhand-overlay-bench --size W H\` on lavapipe: the renderer drawing two demo hands into both views of a W x H headset, at the size the layer draws them (\`overlay::drawn_extent\`: at most 1.2 M pixels a view, the runtime scaling the layer up); memory_mb is the device memory the renderer holds (its 4x multisampled colour and depth and its buffers; the runtime's swapchain images are not counted), CPU and GPU time per frame (lavapipe rasterises on the CPU)."
+    echo
+    echo "| views | drawn at | memory_mb | cpu_ms_median | gpu_ms_median |"
+    echo "|---|---|---|---|---|"
+    sed 's/.*"width": \([0-9]*\), "height": \([0-9]*\), "drawn_width": \([0-9]*\), "drawn_height": \([0-9]*\).*"cpu_ms_median": \([0-9.]*\),.*"gpu_ms_median": \([0-9.]*\),.*"memory_mb": \([0-9.]*\)}/| \1 x \2 | \3 x \4 | \7 | \5 | \6 |/' "$out/overlay.jsonl"
     echo
     echo "## Overhead through the layer"
     echo

@@ -111,6 +111,14 @@ struct Timings {
     uint64_t gpu_frames = 0;
 };
 
+// The most pixels the overlay draws a view with: its 4x multisampled colour and depth, 8
+// bytes a sample, then take at most 40 MB (1052 x 1140 for a headset's 2064 x 2208 view).
+// A larger view is drawn smaller, and the runtime scales the layer up to it.
+inline constexpr uint64_t kMaxDrawnPixels = 1'200'000;
+// The size the overlay draws a view of `view` pixels at: that size, or both sides scaled
+// alike to at most kMaxDrawnPixels.
+VkExtent2D drawn_extent(VkExtent2D view);
+
 // Not thread-safe; the caller synchronises access to the queue (as OpenXR requires of
 // the app around xrEndFrame). A failed Vulkan call throws std::runtime_error naming it
 // and its VkResult; null handles or an empty view throw std::invalid_argument.
@@ -135,6 +143,9 @@ class Renderer {
     void forget_image(VkImage image);
 
     Timings timings() const;
+    // The device memory the renderer holds (its attachments and buffers, not the images it
+    // draws into), bytes.
+    uint64_t memory_bytes() const;
 
   private:
     struct Impl;

@@ -12,6 +12,8 @@
 #include <string>
 #include <utility>
 
+#include "overlay_renderer.h"
+
 namespace physhand::layer {
 namespace {
 
@@ -39,17 +41,20 @@ class OverlayViews : public ::testing::Test {
     XrCompositionLayerProjection layer_{};
 };
 
-// A headset's views, larger than any cap a software rasteriser would like, come through
-// unchanged, one per view.
-TEST_F(OverlayViews, AreTheAppsOwnSize) {
-    views_[1].subImage.imageRect.extent = {1832, 1920};
+// Views up to overlay::kMaxDrawnPixels come through at their own size, one per view; a
+// headset's larger ones are drawn smaller, both sides scaled alike, and the runtime scales
+// the layer up to them.
+TEST_F(OverlayViews, AreTheAppsOwnSizeUpToTheMostPixelsTheOverlayDraws) {
+    views_[1].subImage.imageRect.extent = {1000, 1100};
     const auto extents = overlay_extents(layer_, limits());
     ASSERT_TRUE(extents.has_value());
     ASSERT_EQ(extents->size(), 2u);
-    EXPECT_EQ((*extents)[0].width, 2208u);
-    EXPECT_EQ((*extents)[0].height, 2064u);
-    EXPECT_EQ((*extents)[1].width, 1832u);
-    EXPECT_EQ((*extents)[1].height, 1920u);
+    const VkExtent2D headset = (*extents)[0];
+    EXPECT_LE(uint64_t{headset.width} * headset.height, overlay::kMaxDrawnPixels);
+    EXPECT_GT(uint64_t{headset.width + 1} * (headset.height + 1), overlay::kMaxDrawnPixels);
+    EXPECT_NEAR(double(headset.width) / headset.height, 2208.0 / 2064.0, 0.005);
+    EXPECT_EQ((*extents)[1].width, 1000u);
+    EXPECT_EQ((*extents)[1].height, 1100u);
     views_[0].subImage.imageRect.extent = {4096, 4096};
     EXPECT_TRUE(overlay_extents(layer_, limits()).has_value()) << "the largest swapchain";
 }

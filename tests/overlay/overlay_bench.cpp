@@ -1,7 +1,8 @@
 // physhand-overlay-bench: times the overlay renderer on the first Vulkan device (set
 // VK_ICD_FILENAMES to pick one) drawing the demo hands (physics_hands.h) into a stereo
-// array image, and prints one JSON object: median and p99 of the CPU time of render()
-// and of the GPU time between its timestamps, in milliseconds.
+// array image for views of --size (drawn at overlay::drawn_extent of it, as the layer
+// does), and prints one JSON object: median and p99 of the CPU time of render() and of the
+// GPU time between its timestamps, in milliseconds, and the renderer's device memory.
 //
 //   physhand-overlay-bench [--frames N] [--size WIDTH HEIGHT]
 
@@ -58,6 +59,8 @@ int main(int argc, char** argv) {
         return usage();
     }
 
+    const VkExtent2D view_extent = extent;
+    extent = physhand::overlay::drawn_extent(view_extent);
     std::string reason;
     const auto vulkan = HeadlessVulkan::create(false, nullptr, reason);
     if (!vulkan) {
@@ -100,12 +103,14 @@ int main(int argc, char** argv) {
             }
         }
         std::printf(
-            "{\"device\": \"%s\", \"width\": %u, \"height\": %u, \"views\": 2, \"frames\": %d, "
-            "\"cpu_ms_median\": %.4f, \"cpu_ms_p99\": %.4f, \"gpu_ms_median\": %.4f, "
-            "\"gpu_ms_p99\": %.4f}\n",
-            vulkan->device_name().c_str(), extent.width, extent.height, frames,
-            percentile(cpu_ms, 0.5), percentile(cpu_ms, 0.99), percentile(gpu_ms, 0.5),
-            percentile(gpu_ms, 0.99));
+            "{\"device\": \"%s\", \"width\": %u, \"height\": %u, \"drawn_width\": %u, "
+            "\"drawn_height\": %u, \"views\": 2, \"frames\": %d, \"cpu_ms_median\": %.4f, "
+            "\"cpu_ms_p99\": %.4f, \"gpu_ms_median\": %.4f, \"gpu_ms_p99\": %.4f, "
+            "\"memory_mb\": %.1f}\n",
+            vulkan->device_name().c_str(), view_extent.width, view_extent.height, extent.width,
+            extent.height, frames, percentile(cpu_ms, 0.5), percentile(cpu_ms, 0.99),
+            percentile(gpu_ms, 0.5), percentile(gpu_ms, 0.99),
+            static_cast<double>(renderer.memory_bytes()) / (1024.0 * 1024.0));
     }
     vulkan->destroy_image(image);
     return 0;

@@ -444,6 +444,27 @@ TEST_F(OverlayRenderTest, ReportsCpuAndGpuTime) {
     EXPECT_EQ(renderer_->timings().gpu_frames, 4u);
 }
 
+// A headset's 2064 x 2208 views, drawn at drawn_extent of them, cost the renderer at most
+// 40 MB of device memory (its multisampled attachments and buffers).
+TEST_F(OverlayRenderTest, AHeadsetsViewsTakeAtMost40MB) {
+    const VkExtent2D drawn = drawn_extent({2064, 2208});
+    OffscreenImage& image =
+        images_.emplace_back(vulkan_->create_image(VK_FORMAT_R8G8B8A8_SRGB, drawn, 2));
+    vulkan_->fill(image, {0.0f, 0.0f, 0.0f, 0.0f}, kAttachment);
+    views_ = {camera(-0.032f, 0), camera(0.032f, 1)};
+    for (View& view : views_) {
+        view.image = image.image;
+        view.extent = drawn;
+    }
+    frame_.views = views_;
+    left().physical_active = true;
+    put_joint(left().physical, 0, {0.0f, 0.0f, -0.5f}, 0.02f);
+    EXPECT_TRUE(renderer_->render(frame_));
+    renderer_->wait_idle();
+    EXPECT_LE(renderer_->memory_bytes(), 40'000'000u);
+    EXPECT_GT(renderer_->memory_bytes(), 0u);
+}
+
 TEST_F(OverlayRenderTest, RealHandsDrawBothColoursAndTheTint) {
     frame_ = testing::demo_frame(views_);
     frame_.settings.hand_colors = {kLeftColor, kRightColor};
