@@ -51,6 +51,13 @@ constexpr std::size_t index_of(Joint j) {
     return static_cast<std::size_t>(j);
 }
 
+// Each finger's first bone that moves against the palm (the thumb's metacarpal, the other
+// fingers' proximal): it and the two after it are the finger's bones, the last ending at
+// the tip.
+inline constexpr std::array<Joint, kFingerCount> kFingerFirstBone = {
+    Joint::ThumbMetacarpal, Joint::IndexProximal, Joint::MiddleProximal, Joint::RingProximal,
+    Joint::LittleProximal};
+
 // Parent in the kinematic tree (the wrist is the root; the palm hangs off the wrist).
 std::optional<Joint> joint_parent(Joint j);
 std::string_view joint_name(Joint j);

@@ -25,10 +25,6 @@ constexpr double kMinRadius = 0.004;
 // by this inertia, so it tracks as stiffly as before.
 constexpr double kRotationalInertiaRadius = 0.1;
 
-constexpr std::array<Joint, 5> kFingerFirstBone = {Joint::ThumbMetacarpal, Joint::IndexProximal,
-                                                   Joint::MiddleProximal, Joint::RingProximal,
-                                                   Joint::LittleProximal};
-
 Joint next_joint(Joint j) {
     return static_cast<Joint>(index_of(j) + 1);
 }

@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "bullet_convert.h"
 #include "frame_clock.h"
 #include "quantile.h"
 #include "tracking.h"
@@ -13,23 +14,6 @@
 namespace physhand::bench {
 
 namespace {
-
-btVector3 bt(const Vec3& v) {
-    return {static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()),
-            static_cast<btScalar>(v.z())};
-}
-
-btTransform bt(const Pose& p) {
-    const Quat& q = p.orientation;
-    return btTransform(btQuaternion(static_cast<btScalar>(q.x()), static_cast<btScalar>(q.y()),
-                                    static_cast<btScalar>(q.z()), static_cast<btScalar>(q.w())),
-                       bt(p.position));
-}
-
-// The finger bones: each joint from the first metacarpal-free one to its tip.
-constexpr std::array<Joint, 5> kFirstBone = {Joint::ThumbMetacarpal, Joint::IndexProximal,
-                                             Joint::MiddleProximal, Joint::RingProximal,
-                                             Joint::LittleProximal};
 
 struct KinematicPart {
     std::unique_ptr<btCollisionShape> shape;
@@ -53,13 +37,13 @@ class RawWorld {
         std::unique_ptr<btCollisionShape> shape;
         switch (c.shape.kind) {
             case ShapeKind::Box:
-                shape = std::make_unique<btBoxShape>(bt(c.shape.half_extents));
+                shape = std::make_unique<btBoxShape>(to_bt(c.shape.half_extents));
                 break;
             case ShapeKind::Sphere:
                 shape = std::make_unique<btSphereShape>(static_cast<btScalar>(c.shape.radius));
                 break;
             case ShapeKind::Plane:
-                shape = std::make_unique<btStaticPlaneShape>(bt(c.shape.normal),
+                shape = std::make_unique<btStaticPlaneShape>(to_bt(c.shape.normal),
                                                              static_cast<btScalar>(c.shape.offset));
                 break;
             default:
@@ -69,7 +53,7 @@ class RawWorld {
         btVector3 inertia(0, 0, 0);
         if (mass > 0) shape->calculateLocalInertia(mass, inertia);
         btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape.get(), inertia);
-        info.m_startWorldTransform = bt(c.pose);
+        info.m_startWorldTransform = to_bt(c.pose);
         info.m_friction = static_cast<btScalar>(c.friction);
         auto body = std::make_unique<btRigidBody>(info);
         world_.addRigidBody(body.get());
@@ -90,7 +74,7 @@ class RawWorld {
         };
         kinematic(std::make_unique<btBoxShape>(btVector3(0.045f, 0.012f, 0.05f)), Joint::Palm,
                   Joint::Palm);
-        for (Joint first : kFirstBone) {
+        for (Joint first : kFingerFirstBone) {
             for (int bone = 0; bone < 3; ++bone) {
                 const Joint a = static_cast<Joint>(index_of(first) + bone);
                 const Joint b = static_cast<Joint>(index_of(a) + 1);
@@ -111,7 +95,7 @@ class RawWorld {
                 pose.position = ghost[part.from].position + along / 2;
                 pose.orientation = Quat::FromTwoVectors(Vec3::UnitZ(), along.normalized());
             }
-            part.body->setWorldTransform(bt(pose));
+            part.body->setWorldTransform(to_bt(pose));
         }
     }
 
