@@ -49,7 +49,12 @@ PFN_xrNegotiateLoaderApiLayerInterface open_layer() {
 extern "C" [[gnu::visibility("default")]] XRAPI_ATTR XrResult XRAPI_CALL
 xrNegotiateLoaderApiLayerInterface(const XrNegotiateLoaderInfo* loaderInfo, const char* layerName,
                                    XrNegotiateApiLayerRequest* apiLayerRequest) {
-    static const PFN_xrNegotiateLoaderApiLayerInterface negotiate = open_layer();
-    if (negotiate == nullptr) return XR_ERROR_INITIALIZATION_FAILED;
-    return negotiate(loaderInfo, layerName, apiLayerRequest);
+    try {
+        static const PFN_xrNegotiateLoaderApiLayerInterface negotiate = open_layer();
+        if (negotiate == nullptr) return XR_ERROR_INITIALIZATION_FAILED;
+        return negotiate(loaderInfo, layerName, apiLayerRequest);
+    } catch (...) {
+        // Out of memory finding the layer: nothing may escape into the loader.
+        return XR_ERROR_INITIALIZATION_FAILED;
+    }
 }
