@@ -41,7 +41,8 @@ const XrCompositionLayerProjection* find_projection(const XrFrameEndInfo& info) 
 // to draw after it is released.
 struct FrameHands {
     std::array<HandPose, 2> ghosts;
-    std::array<PhysicalHandState, 2> physical;
+    std::array<HandPose, 2> physical;
+    std::array<std::array<bool, kJointCount>, 2> in_contact;
 };
 
 // Null when there is nothing to draw. Session locked.
@@ -51,9 +52,11 @@ std::optional<FrameHands> frame_hands(const SessionState& state) {
     bool any_active = false;
     for (const HandSide side : kHandSides) {
         const auto i = static_cast<std::size_t>(side);
+        const PhysicalHandState& physical = state.simulation->hand(side);
         hands.ghosts[i] = state.ghosts[i];
-        hands.physical[i] = state.simulation->hand(side);
-        any_active = any_active || hands.ghosts[i].active || hands.physical[i].joints.active;
+        hands.physical[i] = physical.joints;
+        hands.in_contact[i] = physical.in_contact;
+        any_active = any_active || hands.ghosts[i].active || physical.joints.active;
     }
     if (!any_active) return std::nullopt;
     return hands;
@@ -78,12 +81,11 @@ const XrCompositionLayerProjection* draw_overlay(SessionState& state, const XrFr
     std::array<overlay::Hand, 2> hands;
     for (const HandSide side : kHandSides) {
         const auto i = static_cast<std::size_t>(side);
-        const PhysicalHandState& physical = frame_hands.physical[i];
         hands[i].ghost_active = frame_hands.ghosts[i].active;
-        hands[i].physical_active = physical.joints.active;
+        hands[i].physical_active = frame_hands.physical[i].active;
         hands[i].ghost = to_overlay(frame_hands.ghosts[i], frame);
-        hands[i].physical = to_overlay(physical.joints, frame);
-        hands[i].in_contact = physical.in_contact;
+        hands[i].physical = to_overlay(frame_hands.physical[i], frame);
+        hands[i].in_contact = frame_hands.in_contact[i];
     }
     // Created with the first frame that has hands to draw: sessions without them pay nothing.
     if (!state.overlay) {
