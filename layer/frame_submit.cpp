@@ -6,6 +6,7 @@
 
 #include "dispatch.h"
 #include "layer_log.h"
+#include "overlay_hands.h"
 #include "overlay_session.h"
 #include "sessions.h"
 #include "xr_util.h"
@@ -15,16 +16,6 @@
 namespace physhand::layer {
 
 namespace {
-
-overlay::Joints to_overlay(const HandPose& hand, const Pose& frame) {
-    overlay::Joints joints;
-    for (std::size_t i = 0; i < kJointCount; ++i) {
-        const XrVector3f p = to_xr(frame * hand.joints[i].position);
-        joints.positions[i] = {p.x, p.y, p.z};
-        joints.radii[i] = static_cast<float>(hand.radii[i]);
-    }
-    return joints;
-}
 
 const XrCompositionLayerProjection* find_projection(const XrFrameEndInfo& info) {
     for (uint32_t i = 0; i < info.layerCount; ++i) {
@@ -42,7 +33,7 @@ const XrCompositionLayerProjection* find_projection(const XrFrameEndInfo& info) 
 struct FrameHands {
     std::array<HandPose, 2> ghosts;
     std::array<HandPose, 2> physical;
-    std::array<std::array<bool, kJointCount>, 2> in_contact;
+    std::array<HandSolids, 2> solids;
 };
 
 // Null when there is nothing to draw. Session locked.
@@ -55,7 +46,7 @@ std::optional<FrameHands> frame_hands(const SessionState& state) {
         const PhysicalHandState& physical = state.simulation->hand(side);
         hands.ghosts[i] = state.ghosts[i];
         hands.physical[i] = physical.joints;
-        hands.in_contact[i] = physical.in_contact;
+        hands.solids[i] = state.simulation->hand_solids(side);
         any_active = any_active || hands.ghosts[i].active || physical.joints.active;
     }
     if (!any_active) return std::nullopt;
@@ -85,7 +76,8 @@ const XrCompositionLayerProjection* draw_overlay(SessionState& state, const XrFr
         hands[i].physical_active = frame_hands.physical[i].active;
         hands[i].ghost = to_overlay(frame_hands.ghosts[i], frame);
         hands[i].physical = to_overlay(frame_hands.physical[i], frame);
-        hands[i].in_contact = frame_hands.in_contact[i];
+        hands[i].solids = to_overlay(frame_hands.solids[i], frame);
+        hands[i].solid_count = static_cast<uint32_t>(frame_hands.solids[i].count);
     }
     // Created with the first frame that has hands to draw: sessions without them pay nothing.
     if (!state.overlay) {

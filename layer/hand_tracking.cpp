@@ -171,6 +171,36 @@ void report_contacts(const PhysicalHandState& hand, XrHandJointsPhysicalStatePHY
     }
 }
 
+XrHandCollisionShapeKindPHYSHAND shape_kind(HandSolid::Kind kind) {
+    switch (kind) {
+        case HandSolid::Kind::Capsule:
+            return XR_HAND_COLLISION_SHAPE_KIND_CAPSULE_PHYSHAND;
+        case HandSolid::Kind::Box:
+            return XR_HAND_COLLISION_SHAPE_KIND_BOX_PHYSHAND;
+        case HandSolid::Kind::Sphere:
+            break;
+    }
+    return XR_HAND_COLLISION_SHAPE_KIND_SPHERE_PHYSHAND;
+}
+
+// The hand's bodies in the app's base space (`frame`: the layer's frame there), by the
+// two-call idiom.
+XrResult write_shapes(const HandSolids& solids, const Pose& frame,
+                      XrHandCollisionShapesPHYSHAND& out) {
+    out.shapeCountOutput = static_cast<uint32_t>(solids.count);
+    if (out.shapeCapacityInput == 0) return XR_SUCCESS;
+    if (out.shapeCapacityInput < solids.count) return XR_ERROR_SIZE_INSUFFICIENT;
+    for (std::size_t i = 0; i < solids.count; ++i) {
+        const HandSolid& solid = solids.parts[i];
+        XrHandCollisionShapePHYSHAND& shape = out.shapes[i];
+        shape.kind = shape_kind(solid.kind);
+        shape.pose = to_xr(frame * solid.pose);
+        shape.size = to_xr(solid.size);
+        shape.inContact = solid.in_contact ? XR_TRUE : XR_FALSE;
+    }
+    return XR_SUCCESS;
+}
+
 // The simulated joints in the app's base space; `frame` is the layer's frame there.
 void write_physical(const PhysicalHandState& hand, const Pose& frame, XrSpaceLocationFlags flags,
                     bool ghost_active, XrHandJointLocationsEXT& locations,
@@ -294,17 +324,23 @@ XRAPI_ATTR XrResult XRAPI_CALL LocateHandJointsEXT(XrHandTrackerEXT handTracker,
         // The runtime answers in the app's own terms first: that is the ghost, and, for a
         // hand the layer does not simulate, exactly what the app gets.
         XrHandJointsPhysicalStatePHYSHAND* physical = nullptr;
+        XrHandCollisionShapesPHYSHAND* shapes = nullptr;
         XrResult result;
         {
-            const ChainSplice splice(locations, XR_TYPE_HAND_JOINTS_PHYSICAL_STATE_PHYSHAND);
-            physical = reinterpret_cast<XrHandJointsPhysicalStatePHYSHAND*>(splice.removed());
-            if (physical != nullptr && physical->jointCount != XR_HAND_JOINT_COUNT_EXT) {
+            const ChainSplice state_splice(locations, XR_TYPE_HAND_JOINTS_PHYSICAL_STATE_PHYSHAND);
+            const ChainSplice shapes_splice(locations, XR_TYPE_HAND_COLLISION_SHAPES_PHYSHAND);
+            physical = reinterpret_cast<XrHandJointsPhysicalStatePHYSHAND*>(state_splice.removed());
+            shapes = reinterpret_cast<XrHandCollisionShapesPHYSHAND*>(shapes_splice.removed());
+            if ((physical != nullptr && physical->jointCount != XR_HAND_JOINT_COUNT_EXT) ||
+                (shapes != nullptr && shapes->shapeCapacityInput > 0 &&
+                 shapes->shapes == nullptr)) {
                 return XR_ERROR_VALIDATION_FAILURE;
             }
             result = session.instance->next.LocateHandJointsEXT(handTracker, locateInfo, locations);
         }
         if (XR_FAILED(result)) return result;
         if (physical != nullptr) report_ghost(*locations, *physical);
+        if (shapes != nullptr) shapes->shapeCountOutput = 0;
         auto* velocities = find_in_chain<XrHandJointVelocitiesEXT>(
             locations->next, XR_TYPE_HAND_JOINT_VELOCITIES_EXT);
         if (!ref->simulated || !is_default_locate(*locateInfo, *locations, velocities)) {
@@ -315,13 +351,19 @@ XRAPI_ATTR XrResult XRAPI_CALL LocateHandJointsEXT(XrHandTrackerEXT handTracker,
         if (!session.alive || !session.simulation) return result;
         session.advance(locateInfo->time);
         const PhysicalHandState& hand = session.simulation->hand(ref->side);
-        if (!hand.simulated) return result;
-        if (physical != nullptr) report_contacts(hand, *physical);
+        if (!hand.simulated && shapes == nullptr) return result;
         Pose frame;
         XrSpaceLocationFlags flags = 0;
         const XrResult located =
             session.frame_in_space(locateInfo->baseSpace, locateInfo->time, frame, flags);
         if (XR_FAILED(located)) return located;
+        if (shapes != nullptr && (flags & kPoseValid) == kPoseValid) {
+            const XrResult written =
+                write_shapes(session.simulation->hand_solids(ref->side), frame, *shapes);
+            if (XR_FAILED(written)) return written;
+        }
+        if (!hand.simulated) return result;
+        if (physical != nullptr) report_contacts(hand, *physical);
         write_physical(hand, frame, flags, locations->isActive, *locations, velocities);
         return result;
     });

@@ -5,9 +5,10 @@
 #include <span>
 
 // Generated at build time from shaders/ (glslangValidator --vn).
-#include "capsule_vert.h"
 #include "fullscreen_vert.h"
+#include "ghost_frag.h"
 #include "hand_geometry.h"
+#include "primitive_vert.h"
 #include "resolve_frag.h"
 #include "shade_frag.h"
 #include "vk_check.h"
@@ -188,19 +189,21 @@ VkPipeline create_draw_pipeline(const DeviceContext& context, VkRenderPass rende
 
     const VkVertexInputBindingDescription bindings[] = {
         {0, sizeof(MeshVertex), VK_VERTEX_INPUT_RATE_VERTEX},
-        {1, sizeof(CapsuleInstance), VK_VERTEX_INPUT_RATE_INSTANCE},
+        {1, sizeof(PrimitiveInstance), VK_VERTEX_INPUT_RATE_INSTANCE},
     };
     constexpr VkFormat kVec4 = VK_FORMAT_R32G32B32A32_SFLOAT;
     const VkVertexInputAttributeDescription attributes[] = {
         {0, 0, kVec4, offsetof(MeshVertex, local)},
-        {1, 1, kVec4, offsetof(CapsuleInstance, start)},
-        {2, 1, kVec4, offsetof(CapsuleInstance, end)},
-        {3, 1, kVec4, offsetof(CapsuleInstance, color)},
+        {1, 0, kVec4, offsetof(MeshVertex, normal)},
+        {2, 1, kVec4, offsetof(PrimitiveInstance, start)},
+        {3, 1, kVec4, offsetof(PrimitiveInstance, end)},
+        {4, 1, kVec4, offsetof(PrimitiveInstance, orientation)},
+        {5, 1, kVec4, offsetof(PrimitiveInstance, color)},
     };
     state.vertex_input.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
     state.vertex_input.vertexBindingDescriptionCount = 2;
     state.vertex_input.pVertexBindingDescriptions = bindings;
-    state.vertex_input.vertexAttributeDescriptionCount = 4;
+    state.vertex_input.vertexAttributeDescriptionCount = 6;
     state.vertex_input.pVertexAttributeDescriptions = attributes;
 
     const bool ghost = pass != Pass::Physical;
@@ -266,14 +269,15 @@ Pipelines create_pipelines(const DeviceContext& context, VkRenderPass render_pas
         draw_layout_info.pPushConstantRanges = &push_constants;
         PHYSHAND_VK_CHECK(vk.vkCreatePipelineLayout(context.device, &draw_layout_info, nullptr,
                                                     &result.draw_layout));
-        const ShaderModule capsule(context, capsule_vert);
+        const ShaderModule primitive(context, primitive_vert);
         const ShaderModule shade(context, shade_frag);
-        result.physical = create_draw_pipeline(context, render_pass, result.draw_layout, capsule,
+        const ShaderModule ghost(context, ghost_frag);
+        result.physical = create_draw_pipeline(context, render_pass, result.draw_layout, primitive,
                                                shade, Pass::Physical);
-        result.ghost_depth = create_draw_pipeline(context, render_pass, result.draw_layout, capsule,
-                                                  shade, Pass::GhostDepth);
-        result.ghost_color = create_draw_pipeline(context, render_pass, result.draw_layout, capsule,
-                                                  shade, Pass::GhostColor);
+        result.ghost_depth = create_draw_pipeline(context, render_pass, result.draw_layout,
+                                                  primitive, ghost, Pass::GhostDepth);
+        result.ghost_color = create_draw_pipeline(context, render_pass, result.draw_layout,
+                                                  primitive, ghost, Pass::GhostColor);
 
         const VkDescriptorSetLayoutBinding input{0, VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT, 1,
                                                  VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};

@@ -26,7 +26,7 @@ inline constexpr VkSampleCountFlagBits kSamples = VK_SAMPLE_COUNT_4_BIT;
 VkRenderPass create_render_pass(const DeviceContext& context, VkFormat color_format,
                                 VkFormat depth_format, VkImageLayout final_layout);
 
-// Matches the push-constant block of capsule.vert.
+// Matches the push-constant block of primitive.vert.
 struct PushConstants {
     std::array<float, 16> view_projection;
     std::array<float, 4> eye_position;

@@ -51,9 +51,12 @@ struct Renderer::Impl {
     VkCommandPool command_pool = VK_NULL_HANDLE;
     std::array<FrameSlot, kFramesInFlight> slots{};
     size_t next_slot = 0;  // also the oldest pending one
-    HostBuffer mesh;       // vertices, then indices at index_offset
+    // The capsule mesh's vertices then the box mesh's, then their indices at index_offset.
+    HostBuffer mesh;
     VkDeviceSize index_offset = 0;
-    uint32_t index_count = 0;
+    uint32_t capsule_index_count = 0;
+    uint32_t box_index_count = 0;
+    int32_t box_vertex_offset = 0;
     // By final layout. The first was made for COLOR_ATTACHMENT_OPTIMAL and made the
     // pipelines and framebuffers, which are compatible with all the others.
     std::vector<std::pair<VkImageLayout, VkRenderPass>> render_passes;
@@ -62,7 +65,7 @@ struct Renderer::Impl {
     VkQueryPool timestamps = VK_NULL_HANDLE;  // null when not asked for or not supported
     double timestamp_period_ns = 0.0;
     uint64_t timestamp_mask = 0;
-    std::array<CapsuleInstance, kMaxInstances> staging{};
+    std::array<PrimitiveInstance, kMaxInstances> staging{};
     Timings timings;
 
     Impl() = default;
@@ -128,16 +131,21 @@ void Renderer::Impl::init(const CreateInfo& info) {
 }
 
 void Renderer::Impl::create_mesh() {
-    const CapsuleMesh capsule = build_capsule_mesh(kCapsuleSegments, kCapsuleRingsPerCap);
-    const size_t vertex_bytes = capsule.vertices.size() * sizeof(MeshVertex);
-    const size_t index_bytes = capsule.indices.size() * sizeof(uint16_t);
+    Mesh both = build_capsule_mesh(kCapsuleSegments, kCapsuleRingsPerCap);
+    const Mesh box = build_box_mesh();
+    box_vertex_offset = static_cast<int32_t>(both.vertices.size());
+    capsule_index_count = static_cast<uint32_t>(both.indices.size());
+    box_index_count = static_cast<uint32_t>(box.indices.size());
+    both.vertices.insert(both.vertices.end(), box.vertices.begin(), box.vertices.end());
+    both.indices.insert(both.indices.end(), box.indices.begin(), box.indices.end());
+    const size_t vertex_bytes = both.vertices.size() * sizeof(MeshVertex);
+    const size_t index_bytes = both.indices.size() * sizeof(uint16_t);
     mesh = create_host_buffer(context, vertex_bytes + index_bytes,
                               VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
     auto* bytes = static_cast<std::byte*>(mesh.mapped);
-    std::memcpy(bytes, capsule.vertices.data(), vertex_bytes);
-    std::memcpy(bytes + vertex_bytes, capsule.indices.data(), index_bytes);
+    std::memcpy(bytes, both.vertices.data(), vertex_bytes);
+    std::memcpy(bytes + vertex_bytes, both.indices.data(), index_bytes);
     index_offset = vertex_bytes;
-    index_count = static_cast<uint32_t>(capsule.indices.size());
 }
 
 void Renderer::Impl::create_timestamps(uint32_t queue_family_index) {
@@ -242,10 +250,10 @@ void Renderer::Impl::record(const FrameSlot& slot, const Frame& frame, DrawCount
     const VkDeviceSize offsets[] = {0, 0};
     vk.vkCmdBindVertexBuffers(commands, 0, 2, vertex_buffers, offsets);
     vk.vkCmdBindIndexBuffer(commands, mesh.buffer, index_offset, VK_INDEX_TYPE_UINT16);
-    const auto draw = [&](VkPipeline pipeline, uint32_t count, uint32_t first) {
+    const auto capsules = [&](VkPipeline pipeline, uint32_t count, uint32_t first) {
         if (count > 0) {
             vk.vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-            vk.vkCmdDrawIndexed(commands, index_count, count, 0, 0, first);
+            vk.vkCmdDrawIndexed(commands, capsule_index_count, count, 0, 0, first);
         }
     };
     const VkRenderPass pass = render_pass(frame.final_layout);
@@ -274,9 +282,18 @@ void Renderer::Impl::record(const FrameSlot& slot, const Frame& frame, DrawCount
         const PushConstants constants{view_projection(view.eye), {eye.x, eye.y, eye.z, 1.0f}};
         vk.vkCmdPushConstants(commands, pipelines.draw_layout, VK_SHADER_STAGE_VERTEX_BIT, 0,
                               sizeof(constants), &constants);
-        draw(pipelines.physical, counts.physical, 0);
-        draw(pipelines.ghost_depth, counts.ghost, counts.physical);
-        draw(pipelines.ghost_color, counts.ghost, counts.physical);
+        capsules(pipelines.physical, counts.physical_capsules, 0);
+        if (counts.physical_boxes > 0) {
+            // The physical pipeline is bound: boxes are drawn with it, on their own mesh.
+            if (counts.physical_capsules == 0) {
+                vk.vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.physical);
+            }
+            vk.vkCmdDrawIndexed(commands, box_index_count, counts.physical_boxes,
+                                capsule_index_count, box_vertex_offset, counts.physical_capsules);
+        }
+        const uint32_t first_ghost = counts.physical_capsules + counts.physical_boxes;
+        capsules(pipelines.ghost_depth, counts.ghost, first_ghost);
+        capsules(pipelines.ghost_color, counts.ghost, first_ghost);
         vk.vkCmdNextSubpass(commands, VK_SUBPASS_CONTENTS_INLINE);
         vk.vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.resolve);
         vk.vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_GRAPHICS,
@@ -313,7 +330,7 @@ bool Renderer::render(const Frame& frame) {
     const auto start = std::chrono::steady_clock::now();
     Impl& impl = *impl_;
     const DrawCounts counts = build_instances(frame, impl.staging);
-    const bool drawing = counts.physical + counts.ghost > 0 && !frame.views.empty();
+    const bool drawing = counts.total() > 0 && !frame.views.empty();
     if (drawing) {
         for (const View& view : frame.views) {
             if (view.image == VK_NULL_HANDLE || view.extent.width == 0 || view.extent.height == 0) {
@@ -329,7 +346,7 @@ bool Renderer::render(const Frame& frame) {
         Impl::FrameSlot& slot = impl.slots[impl.next_slot];
         impl.retire(slot);
         std::memcpy(slot.instances.mapped, impl.staging.data(),
-                    (counts.physical + counts.ghost) * sizeof(CapsuleInstance));
+                    counts.total() * sizeof(PrimitiveInstance));
         impl.record(slot, frame, counts);
         impl.submit(slot);
     }

@@ -286,6 +286,34 @@ void PhysicalHand::read(const HandPose& target, PhysicalHandState& out) const {
     }
 }
 
+HandSolids PhysicalHand::solids(const HandPose& hand,
+                                const std::array<bool, kJointCount>& in_contact) const {
+    HandSolids out;
+    for (const auto& b : bodies_) {
+        HandSolid& solid = out.parts[out.count++];
+        solid.pose = hand[b->anchor] * b->offset;
+        solid.in_contact = in_contact[index_of(b->carried.front())];
+        const btCollisionShape& shape = *b->shape;
+        switch (shape.getShapeType()) {
+            case BOX_SHAPE_PROXYTYPE:
+                solid.kind = HandSolid::Kind::Box;
+                solid.size =
+                    from_bt(static_cast<const btBoxShape&>(shape).getHalfExtentsWithMargin());
+                break;
+            case CAPSULE_SHAPE_PROXYTYPE: {
+                const auto& capsule = static_cast<const btCapsuleShape&>(shape);
+                solid.kind = HandSolid::Kind::Capsule;
+                solid.size = Vec3(capsule.getRadius(), 0.0, capsule.getHalfHeight());
+                break;
+            }
+            default:
+                solid.kind = HandSolid::Kind::Sphere;
+                solid.size = Vec3(static_cast<const btSphereShape&>(shape).getRadius(), 0.0, 0.0);
+        }
+    }
+    return out;
+}
+
 int PhysicalHand::body_index(const btCollisionObject* object) const {
     const int tag = object->getUserIndex2();
     if ((tag >> 8) != static_cast<int>(side_)) return -1;

@@ -52,6 +52,9 @@ class PhysicalHand {
     // further into what the hand rests on than the hand does. Joints the palm box carries lie
     // on its mid-plane.
     void read(const HandPose& target, PhysicalHandState& out) const;
+    // Each body as it collides, placed by the joint it follows in `hand` (as read() gives
+    // it, or moved on from that) and touching where the joints it carries are `in_contact`.
+    HandSolids solids(const HandPose& hand, const std::array<bool, kJointCount>& in_contact) const;
     // Which body a collision object is, or -1.
     int body_index(const btCollisionObject* object) const;
     std::size_t body_count() const { return bodies_.size(); }

@@ -73,6 +73,9 @@ void ghost_bounds(const HandPose& ghost, Vec3& lo, Vec3& hi) {
 struct Simulation::HandSlot {
     HandSide side;
     std::unique_ptr<PhysicalHand> body;  // built from the first valid ghost
+    // For drawing a hand not simulated yet (hand_solids): the bodies it would have, kept
+    // apart so that drawing never changes the physics.
+    std::unique_ptr<PhysicalHand> drawn_model;
     HandPose ghost;                      // latest valid ghost
     HandPose previous_ghost;             // ghost at the previous step
     HandPose target;                     // what the drive follows: the ghost, smoothed
@@ -116,6 +119,7 @@ void Simulation::set_drive(const DriveSettings& drive) {
     tick_ = static_cast<std::int64_t>(std::floor(
         static_cast<double>(tick_) * old_h * settings_.frame_rate_hz * drive.substeps + 0.5));
     for (auto& slot : hands_) {
+        slot->drawn_model.reset();
         if (!slot->body) continue;
         if (slot->body->drive_settings().body_model == drive.body_model) {
             slot->body->set_drive(drive);
@@ -179,6 +183,20 @@ std::size_t Simulation::collider_count() const {
 
 const PhysicalHandState& Simulation::hand(HandSide side) const {
     return hands_[static_cast<int>(side)]->shown;
+}
+
+HandSolids Simulation::hand_solids(HandSide side) {
+    HandSlot& slot = *hands_[static_cast<int>(side)];
+    if (!slot.shown.joints.active) return {};
+    if (slot.body) {
+        slot.drawn_model.reset();
+        return slot.body->solids(slot.shown.joints, slot.shown.in_contact);
+    }
+    // A hand never simulated yet (gated since it appeared) has no bodies: those it would get.
+    if (!slot.drawn_model) {
+        slot.drawn_model = std::make_unique<PhysicalHand>(side, settings_.drive, slot.ghost);
+    }
+    return slot.drawn_model->solids(slot.shown.joints, slot.shown.in_contact);
 }
 
 bool Simulation::state_is_finite() const {

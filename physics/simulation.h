@@ -10,9 +10,9 @@
 #include <tuple>
 #include <vector>
 
+#include "collider.h"
 #include "drive.h"
 #include "hand_skeleton.h"
-#include "collider.h"
 #include "speed_limit.h"
 
 namespace physhand {
@@ -50,6 +50,22 @@ struct PhysicalHandState {
     // The largest distance between the ends of two bones that meet at a joint (each bone's
     // body placing the joint), m: how far the hand has come apart.
     double max_joint_gap = 0.0;
+};
+
+// One body of the physical hand as it collides, for drawing it as it is.
+struct HandSolid {
+    enum class Kind { Sphere, Capsule, Box };
+    Kind kind = Kind::Sphere;
+    Pose pose;  // the body's centre; a capsule's axis is its local z
+    // Sphere: radius in x. Capsule: radius in x, half the distance between its end centres
+    // in z. Box: half extents.
+    Vec3 size = Vec3::Zero();
+    bool in_contact = false;  // touched a collider
+};
+
+struct HandSolids {
+    std::array<HandSolid, kJointCount> parts{};  // a body per joint at most
+    std::size_t count = 0;
 };
 
 // Counters of pathological input, for tests and logs.
@@ -125,6 +141,10 @@ class Simulation {
 
     // The hand as shown at the latest time stepped to.
     const PhysicalHandState& hand(HandSide side) const;
+    // Its bodies as they collide, placed as hand(side) shows its joints (none when it is not
+    // active). Computed on request: only a caller that draws the hand needs them. Changes no
+    // physics.
+    HandSolids hand_solids(HandSide side);
     // Every pose, velocity and drive force of both hands and of every collider is finite
     // (the nonfinite_count of docs/metrics.md counts frames where this is false).
     bool state_is_finite() const;

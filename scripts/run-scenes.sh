@@ -2,7 +2,7 @@
 # The main job: installs what is missing, builds, and plays every sample scene through
 # loader -> layer -> simulated runtime (physhand-sample), one result line each (pass --json
 # for the full result objects). The four paper scenes (throw, sphere, displacement, stack)
-# are rendered (Vulkan; lavapipe when no other device is set) with capture: their frames go
+# and press_table are rendered (Vulkan; lavapipe when no other device is set) with capture: their frames go
 # to out/SCENE/ and one contact sheet each to out/SCENE_contact_sheet.png. The others play
 # headless. PHYSICS_ONLY=1 runs physhand-scene instead; VIEW_SIZE sets the rendered views'
 # width in pixels (default 320). The simulated head sits at the table, close enough for 4 cm
@@ -22,7 +22,7 @@ for scene in "$root"/samples/scenes/*.json; do
     name=$(basename "$scene" .json)
     if [ "${PHYSICS_ONLY:-0}" = 1 ]; then
         "$build/samples/physhand-scene" "$scene" "$@"
-    elif [[ " throw sphere displacement stack " == *" $name "* ]]; then
+    elif [[ " throw sphere displacement stack press_table " == *" $name "* ]]; then
         rm -rf "${out:?}/$name"
         mkdir -p "$out/$name"
         if [ "$name" = sphere ]; then head=(0.1,1.45,-0.45 -64); else head=(0.15,1.1,0.05 -40); fi

@@ -55,21 +55,41 @@ struct Joints {
     std::array<float, kJointCount> radii{};
 };
 
-// Joints with a non-finite centre or a radius <= 0 are not drawn, nor their bones. The
-// ghost shows only where it differs from the physical hand, which is drawn in front of it
-// where both coincide.
+// A part of the physical hand as it collides, in the eyes' space: a capsule (the centres of
+// its two ends and its radius; a sphere where they coincide) or a box.
+struct Solid {
+    enum class Kind { Capsule, Box };
+    Kind kind = Kind::Capsule;
+    Vec3 start, end;  // capsule: the ends' centres; box: its centre in start
+    float radius = 0.0f;
+    Quat orientation;   // box
+    Vec3 half_extents;  // box
+    bool in_contact = false;
+};
+
+inline constexpr int kMaxSolids = kJointCount;
+
+// Joints with a non-finite centre or a radius <= 0 are not drawn, nor their bones; solids
+// with a non-finite or non-positive size or place are not drawn. The ghost is drawn thinner
+// than the joints' radii, lit at its rim, and only where it differs from the physical
+// hand's joints.
 struct Hand {
     bool ghost_active = false;     // draw the ghost (tracked) hand, translucent
     bool physical_active = false;  // draw the physical (simulated) hand, opaque
     Joints ghost;
     Joints physical;
+    // The physical hand is drawn as these, the shapes that collide, each tinted where it
+    // touches; a caller that knows only the joints leaves them out, and the physical joints
+    // and bones are drawn instead, tinted as `in_contact` says.
+    std::array<Solid, kMaxSolids> solids{};
+    uint32_t solid_count = 0;
     std::array<bool, kJointCount> in_contact{};  // physical joint touches something
 };
 
 struct Settings {
     std::array<Color, 2> hand_colors{{{0.9f, 0.15f, 0.15f}, {0.15f, 0.8f, 0.2f}}};  // left, right
     Color contact_tint{0.55f, 0.8f, 1.0f};
-    float ghost_alpha = 0.35f;
+    float ghost_alpha = 0.6f;  // at the ghost's outline; a quarter of it where it faces the eye
     bool tint = true;
     float bone_radius_scale = 0.6f;  // bone radius at each end = scale x that joint's radius
 };

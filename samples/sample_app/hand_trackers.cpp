@@ -32,9 +32,14 @@ double HandTrackers::locate(XrSpace space, XrTime time, std::array<LocatedHand, 
     info.time = time;
     // Everything is set up first, so that the clock times the two calls alone.
     std::array<XrHandJointsPhysicalStatePHYSHAND, 2> states{};
+    std::array<XrHandCollisionShapesPHYSHAND, 2> shapes{};
     std::array<XrHandJointLocationsEXT, 2> locations{};
     for (std::size_t i = 0; i < hands.size(); ++i) {
+        shapes[i].type = XR_TYPE_HAND_COLLISION_SHAPES_PHYSHAND;
+        shapes[i].shapeCapacityInput = static_cast<std::uint32_t>(hands[i].shapes.size());
+        shapes[i].shapes = hands[i].shapes.data();
         states[i].type = XR_TYPE_HAND_JOINTS_PHYSICAL_STATE_PHYSHAND;
+        states[i].next = &shapes[i];
         states[i].jointCount = XR_HAND_JOINT_COUNT_EXT;
         states[i].ghostPoses = hands[i].ghost.data();
         states[i].inContact = hands[i].in_contact.data();
@@ -53,6 +58,7 @@ double HandTrackers::locate(XrSpace space, XrTime time, std::array<LocatedHand, 
     for (std::size_t i = 0; i < hands.size(); ++i) {
         hands[i].active = locations[i].isActive == XR_TRUE;
         hands[i].ghost_active = states[i].ghostIsActive == XR_TRUE;
+        hands[i].shape_count = shapes[i].shapeCountOutput;
     }
     return std::chrono::duration<double, std::micro>(end - start).count();
 }

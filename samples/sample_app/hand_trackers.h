@@ -4,6 +4,7 @@
 #include <openxr/physhand_physical_hands.h>
 
 #include <array>
+#include <cstdint>
 
 #include "xr_handle.h"
 
@@ -15,6 +16,9 @@ struct LocatedHand {
     std::array<XrPosef, XR_HAND_JOINT_COUNT_EXT> ghost{};
     std::array<XrBool32, XR_HAND_JOINT_COUNT_EXT> in_contact{};
     std::array<float, XR_HAND_JOINT_COUNT_EXT> spring_force{};
+    // The bodies the physical hand collides as (none without the layer).
+    std::array<XrHandCollisionShapePHYSHAND, XR_HAND_JOINT_COUNT_EXT> shapes{};
+    std::uint32_t shape_count = 0;
     bool active = false;
     bool ghost_active = false;
 };

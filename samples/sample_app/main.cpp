@@ -32,6 +32,7 @@ constexpr const char* kUsage =
     "  --hover-cm X    objects start to turn translucent within X cm of a hand (default 3;\n"
     "                  0: only while touched)\n"
     "  --no-feedback   touched objects stay opaque\n"
+    "  --no-hands      draw no hands of the app's own (the layer's overlay still may)\n"
     "  --view-size N   each view N pixels wide (default: the runtime's recommendation)\n"
     "  --json          print each result as one JSON object (default: one summary line)\n";
 
@@ -84,7 +85,9 @@ int main(int argc, char** argv) {
         } else if (arg == "--live") {
             options.live = true;
         } else if (arg == "--no-feedback") {
-            options.feedback.enabled = false;
+            options.drawing.feedback = false;
+        } else if (arg == "--no-hands") {
+            options.drawing.hands = false;
         } else if (arg == "--hover-cm") {
             const std::string text = option_value(i, argc, argv);
             const auto cm = number_in(text, 0.0, 100.0, false);
@@ -92,7 +95,7 @@ int main(int argc, char** argv) {
                 return usage_error("--hover-cm: \"" + text +
                                    "\" is not a distance in cm from 0 (no hover) to 100");
             }
-            options.feedback.hover_m = *cm / 100.0;
+            options.drawing.hover_m = *cm / 100.0;
         } else if (arg == "--drive") {
             drive_options.drive = option_value(i, argc, argv);
         } else if (arg == "--substeps") {

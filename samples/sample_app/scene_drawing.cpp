@@ -77,17 +77,18 @@ SceneDrawing::SceneDrawing(const Scene& scene) : scene_(scene) {
     }
     sphere_ = meshes_.add_unit_sphere();
     cylinder_ = meshes_.add_unit_cylinder();
+    box_ = meshes_.add_unit_box();
 }
 
 std::vector<Draw> SceneDrawing::draws(
     const std::vector<XrPhysicalColliderLocationPHYSHAND>& colliders,
-    const std::array<LocatedHand, 2>& hands, const FeedbackSettings& feedback) const {
+    const std::array<LocatedHand, 2>& hands, const DrawSettings& drawing) const {
     std::vector<Draw> out;
     for (std::size_t i = 0; i < colliders.size(); ++i) {
         const Collider& c = scene_.colliders[i];
         const XrPhysicalColliderLocationPHYSHAND& location = colliders[i];
         float alpha = 1.0f;
-        if (feedback.enabled && c.motion == Motion::Dynamic) {
+        if (drawing.feedback && c.motion == Motion::Dynamic) {
             double gap = std::numeric_limits<double>::infinity();
             const Pose pose = to_pose(location.pose);
             for (const LocatedHand& hand : hands) {
@@ -99,7 +100,7 @@ std::vector<Draw> SceneDrawing::draws(
                                        joint.radius);
                 }
             }
-            alpha = object_alpha(touched(location), gap, feedback.hover_m);
+            alpha = object_alpha(touched(location), gap, drawing.hover_m);
         }
         const Rgb& rgb = collider_colors_[i];
         out.push_back(
@@ -111,21 +112,37 @@ std::vector<Draw> SceneDrawing::draws(
             {*visual_floor_, Eigen::Matrix4f::Identity(), {floor[0], floor[1], floor[2], 1.0f}});
     }
     for (const LocatedHand& hand : hands) {
-        if (hand.active) add_hand(hand, out);
+        if (drawing.hands && hand.active) add_hand(hand, out);
     }
     return out;
 }
 
-void SceneDrawing::add_hand(const LocatedHand& hand, std::vector<Draw>& draws) const {
+namespace {
+
+const std::array<float, 4> kSkinColor = [] {
     const Rgb skin = linear(kSkin);
-    const std::array<float, 4> color = {skin[0], skin[1], skin[2], 1.0f};
+    return std::array<float, 4>{skin[0], skin[1], skin[2], 1.0f};
+}();
+
+}  // namespace
+
+void SceneDrawing::add_sphere(const Eigen::Vector3f& centre, float radius,
+                              std::vector<Draw>& draws) const {
+    Eigen::Matrix4f sphere = Eigen::Matrix4f::Identity();
+    sphere.block<3, 3>(0, 0) *= radius;
+    sphere.block<3, 1>(0, 3) = centre;
+    draws.push_back({sphere_, sphere, kSkinColor});
+}
+
+void SceneDrawing::add_hand(const LocatedHand& hand, std::vector<Draw>& draws) const {
+    if (hand.shape_count > 0) {
+        add_hand_shapes(hand, draws);
+        return;
+    }
     for (std::size_t j = 0; j < kJointCount; ++j) {
         const XrHandJointLocationEXT& joint = hand.joints[j];
         if (!position_valid(joint)) continue;
-        Eigen::Matrix4f sphere = Eigen::Matrix4f::Identity();
-        sphere.block<3, 3>(0, 0) *= joint.radius;
-        sphere.block<3, 1>(0, 3) = vec3f(joint.pose.position);
-        draws.push_back({sphere_, sphere, color});
+        add_sphere(vec3f(joint.pose.position), joint.radius, draws);
 
         const std::optional<Joint> parent = joint_parent(static_cast<Joint>(j));
         if (!parent) continue;
@@ -142,7 +159,41 @@ void SceneDrawing::add_hand(const LocatedHand& hand, std::vector<Draw>& draws) c
         Eigen::Matrix4f bone = Eigen::Matrix4f::Identity();
         bone.block<3, 3>(0, 0) = turn * Eigen::Vector3f(radius, length / 2, radius).asDiagonal();
         bone.block<3, 1>(0, 3) = (a + b) / 2;
-        draws.push_back({cylinder_, bone, color});
+        draws.push_back({cylinder_, bone, kSkinColor});
+    }
+}
+
+void SceneDrawing::add_hand_shapes(const LocatedHand& hand, std::vector<Draw>& draws) const {
+    const auto count = std::min<std::size_t>(hand.shape_count, hand.shapes.size());
+    for (std::size_t i = 0; i < count; ++i) {
+        const XrHandCollisionShapePHYSHAND& shape = hand.shapes[i];
+        const Eigen::Matrix4f pose = pose_matrix(shape.pose);
+        const Eigen::Vector3f size = vec3f(shape.size);
+        switch (shape.kind) {
+            case XR_HAND_COLLISION_SHAPE_KIND_BOX_PHYSHAND: {
+                Eigen::Matrix4f box = pose;
+                box.block<3, 3>(0, 0) *= size.asDiagonal();
+                draws.push_back({box_, box, kSkinColor});
+                break;
+            }
+            case XR_HAND_COLLISION_SHAPE_KIND_CAPSULE_PHYSHAND: {
+                // The unit cylinder's Y axis onto the capsule's Z axis, and a sphere each end.
+                const Eigen::Vector3f axis = pose.block<3, 1>(0, 2);
+                const Eigen::Vector3f centre = pose.block<3, 1>(0, 3);
+                Eigen::Matrix4f side = Eigen::Matrix4f::Identity();
+                side.block<3, 3>(0, 0) =
+                    Eigen::Quaternionf::FromTwoVectors(Eigen::Vector3f::UnitY(), axis)
+                        .toRotationMatrix() *
+                    Eigen::Vector3f(size.x(), size.z(), size.x()).asDiagonal();
+                side.block<3, 1>(0, 3) = centre;
+                draws.push_back({cylinder_, side, kSkinColor});
+                add_sphere(centre - size.z() * axis, size.x(), draws);
+                add_sphere(centre + size.z() * axis, size.x(), draws);
+                break;
+            }
+            default:
+                add_sphere(vec3f(shape.pose.position), size.x(), draws);
+        }
     }
 }
 

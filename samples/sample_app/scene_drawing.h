@@ -14,17 +14,20 @@
 
 namespace physhand::sample {
 
-// How touched and nearly touched objects are shown (touch_feedback.h).
-struct FeedbackSettings {
-    bool enabled = true;    // false: every object stays opaque
+// What the sample draws besides the colliders, and how touched and nearly touched objects
+// are shown (touch_feedback.h).
+struct DrawSettings {
+    bool feedback = true;   // false: every object stays opaque
     double hover_m = 0.03;  // objects start to fade within this gap to a hand
+    bool hands = true;      // false: the app draws no hands (the layer's overlay may)
 };
 
 // What the sample draws of a scene: its colliders where the layer says they are, in
 // colours by kind (floor, static, kinematic, one hue per dynamic collider), and the
-// physical hands' joints and bones. The scene format has no colours, so these are the
-// sample's own. A scene without a plane collider gets a floor at y = 0 to stand on, drawn
-// only: nothing collides with it.
+// physical hands as the shapes they collide as (the layer's XrHandCollisionShapesPHYSHAND;
+// without the layer, the runtime's joints and bones). The scene format has no colours, so these are
+// the sample's own. A scene without a plane collider gets a floor at y = 0 to stand on, drawn only:
+// nothing collides with it.
 class SceneDrawing {
   public:
     explicit SceneDrawing(const Scene& scene);
@@ -33,13 +36,15 @@ class SceneDrawing {
     const MeshSet& meshes() const { return meshes_; }
 
     // Colliders (located in scene order) and both hands as draws; dynamic colliders are
-    // translucent while touched or hovered over (FeedbackSettings).
+    // translucent while touched or hovered over (DrawSettings).
     std::vector<Draw> draws(const std::vector<XrPhysicalColliderLocationPHYSHAND>& colliders,
                             const std::array<LocatedHand, 2>& hands,
-                            const FeedbackSettings& feedback) const;
+                            const DrawSettings& drawing) const;
 
   private:
     void add_hand(const LocatedHand& hand, std::vector<Draw>& draws) const;
+    void add_hand_shapes(const LocatedHand& hand, std::vector<Draw>& draws) const;
+    void add_sphere(const Eigen::Vector3f& centre, float radius, std::vector<Draw>& draws) const;
 
     const Scene& scene_;
     MeshSet meshes_;
@@ -48,6 +53,7 @@ class SceneDrawing {
     std::optional<MeshRange> visual_floor_;              // when the scene has no plane
     MeshRange sphere_;
     MeshRange cylinder_;
+    MeshRange box_;
 };
 
 }  // namespace physhand::sample

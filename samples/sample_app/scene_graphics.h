@@ -37,7 +37,7 @@ class SceneGraphics {
     const XrCompositionLayerBaseHeader* render(
         XrSpace stage, XrTime time,
         const std::vector<XrPhysicalColliderLocationPHYSHAND>& colliders,
-        const std::array<LocatedHand, 2>& hands, const FeedbackSettings& feedback);
+        const std::array<LocatedHand, 2>& hands, const DrawSettings& drawing);
 
     // Where a point of the scene appears in view 0 of the last frame rendered, as a fraction
     // of the image's width and height from its top left; nullopt behind the eye.

@@ -177,4 +177,8 @@ MeshRange MeshSet::add_unit_cylinder() {
     return add_cylinder(1.0, 1.0);
 }
 
+MeshRange MeshSet::add_unit_box() {
+    return add_box(Vec3::Ones(), Vec3::Zero());
+}
+
 }  // namespace physhand::sample

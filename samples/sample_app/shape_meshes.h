@@ -26,9 +26,11 @@ class MeshSet {
     // the point nearest the frame's origin; a convex hull is drawn as its bounding box (the
     // sample builds no hulls: no paper scene has one).
     MeshRange add_shape(const Shape& shape);
-    // A sphere of radius 1, and a cylinder of radius 1 along Y from -1 to 1, to be scaled.
+    // A sphere of radius 1, a cylinder of radius 1 along Y from -1 to 1, and a cube from -1
+    // to 1, to be scaled.
     MeshRange add_unit_sphere();
     MeshRange add_unit_cylinder();
+    MeshRange add_unit_box();
 
     const std::vector<Vertex>& vertices() const { return vertices_; }
     const std::vector<std::uint32_t>& indices() const { return indices_; }

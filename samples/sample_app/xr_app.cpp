@@ -200,7 +200,7 @@ void XrApp::end_frame(const XrFrameState& state, bool playing, int frame, TouchL
     const XrCompositionLayerBaseHeader* layer = nullptr;
     if (graphics_ && colliders_ && state.shouldRender == XR_TRUE) {
         layer = graphics_->render(stage_.get(), state.predictedDisplayTime, colliders_->located(),
-                                  hands_, options_.feedback);
+                                  hands_, options_.drawing);
         if (playing && layer != nullptr) {
             touches.add_frame(frame, colliders_->located(), [this](const Vec3& point) {
                 return graphics_->view0_position(point);

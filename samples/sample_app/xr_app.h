@@ -27,7 +27,7 @@ struct AppOptions {
     // Scenes do not end on their own, and stdin lines reset or switch them (stdin_commands.h):
     // for a headset. Otherwise each scene plays for its duration and the app asks to exit.
     bool live = false;
-    FeedbackSettings feedback;
+    DrawSettings drawing;
     // Set through the extension for the whole session, and reported with each result.
     DriveSettings drive = default_drive();
     std::optional<std::uint32_t> view_width;  // pixels; the runtime's recommendation if unset

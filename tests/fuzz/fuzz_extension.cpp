@@ -88,6 +88,7 @@ void expect_documented(XrResult result, const char* call) {
         case XR_ERROR_POSE_INVALID:
         case XR_ERROR_TIME_INVALID:
         case XR_ERROR_HANDLE_INVALID:
+        case XR_ERROR_SIZE_INSUFFICIENT:
             return;
         default:
             fail(call, "undocumented result", result);
@@ -413,6 +414,7 @@ class Harness {
         std::array<XrPosef, kJoints> ghosts{};
         std::array<XrBool32, kJoints> contacts{};
         std::array<float, kJoints> forces{};
+        std::array<XrHandCollisionShapePHYSHAND, kJoints> shape_array{};
         auto locations = xr<XrHandJointLocationsEXT>(XR_TYPE_HAND_JOINT_LOCATIONS_EXT);
         locations.jointCount = kJoints;
         locations.jointLocations = joints.data();
@@ -426,12 +428,22 @@ class Harness {
         physical.ghostPoses = arrays ? ghosts.data() : nullptr;
         physical.inContact = arrays ? contacts.data() : nullptr;
         physical.springForce = arrays ? forces.data() : nullptr;
-        // Bit 0 chains the velocities, bit 1 the layer's physical state, in front of them.
+        auto shapes = xr<XrHandCollisionShapesPHYSHAND>(XR_TYPE_HAND_COLLISION_SHAPES_PHYSHAND);
+        // Bits 5 and 6: a capacity of none, too few, all, or all with no array.
+        const std::uint8_t capacity = (chain >> 5) & 3;
+        shapes.shapeCapacityInput = capacity == 0 ? 0 : capacity == 1 ? 5 : kJoints;
+        shapes.shapes = capacity == 3 ? nullptr : shape_array.data();
+        // Bit 0 chains the velocities, bit 1 the layer's physical state, bit 4 its shapes, in
+        // front of them.
         void* next = nullptr;
         if (chain & 1) next = &velocities;
         if (chain & 2) {
             physical.next = next;
             next = &physical;
+        }
+        if (chain & 16) {
+            shapes.next = next;
+            next = &shapes;
         }
         locations.next = next;
 
@@ -444,6 +456,16 @@ class Harness {
                 !finite(joint_velocities[i].angularVelocity) || !finite(ghosts[i]) ||
                 !finite(forces[i])) {
                 fail("xrLocateHandJointsEXT", "non-finite joint", result);
+            }
+        }
+        if ((chain & 16) == 0 || shapes.shapeCapacityInput == 0) return;
+        if (shapes.shapeCountOutput > shapes.shapeCapacityInput) {
+            fail("xrLocateHandJointsEXT", "more shapes than room", result);
+        }
+        for (std::uint32_t i = 0; i < shapes.shapeCountOutput; ++i) {
+            const XrHandCollisionShapePHYSHAND& shape = shape_array[i];
+            if (!finite(shape.pose) || !finite(shape.size)) {
+                fail("xrLocateHandJointsEXT", "non-finite shape", result);
             }
         }
     }

@@ -44,11 +44,11 @@ TEST(ConfigParse, NoDrawingKeysKeepTheOverlaysDefaults) {
 
 TEST(ConfigParse, ColorsGhostOpacityAndTintSetTheDrawing) {
     const layer::Config config = parse_config(R"({"colors": {"left": [1, 0, 0.5],
-        "contact": [0, 1, 0]}, "ghost_opacity": 0.6, "tint": false})");
+        "contact": [0, 1, 0]}, "ghost_opacity": 0.45, "tint": false})");
     expect_color(config.drawing.hand_colors[0], {1.0f, 0.0f, 0.5f});
     expect_color(config.drawing.hand_colors[1], overlay::Settings{}.hand_colors[1]);
     expect_color(config.drawing.contact_tint, {0.0f, 1.0f, 0.0f});
-    EXPECT_EQ(config.drawing.ghost_alpha, 0.6f);
+    EXPECT_EQ(config.drawing.ghost_alpha, 0.45f);
     EXPECT_FALSE(config.drawing.tint);
     const layer::Config right = parse_config(R"({"colors": {"right": [0, 0, 1]}})");
     expect_color(right.drawing.hand_colors[1], {0.0f, 0.0f, 1.0f});

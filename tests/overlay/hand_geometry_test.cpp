@@ -29,7 +29,7 @@ double dot(const Point& a, const Point& b) {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-void expect_outward(const CapsuleMesh& mesh, double start_z, double end_z) {
+void expect_outward(const Mesh& mesh, double start_z, double end_z) {
     ASSERT_EQ(mesh.indices.size() % 3, 0u);
     const double middle = 0.5 * (start_z + end_z);
     for (size_t i = 0; i < mesh.indices.size(); i += 3) {
@@ -52,7 +52,7 @@ void expect_outward(const CapsuleMesh& mesh, double start_z, double end_z) {
 }
 
 TEST(CapsuleMesh, SphereAndCapsuleTrianglesAllFaceOutward) {
-    const CapsuleMesh mesh = build_capsule_mesh(20, 6);
+    const Mesh mesh = build_capsule_mesh(20, 6);
     EXPECT_EQ(mesh.vertices.size(), 20u * 14u);
     // Per quad band two triangles, one fewer at each pole band; 13 bands.
     EXPECT_EQ(mesh.indices.size(), 3u * 20u * (2 * 13 - 2));
@@ -65,6 +65,44 @@ TEST(CapsuleMesh, VerticesAreUnitDirections) {
         EXPECT_NEAR(std::hypot(v.local[0], v.local[1], v.local[2]), 1.0, 1e-6);
         EXPECT_TRUE(v.local[3] == 0.0f || v.local[3] == 1.0f);
     }
+}
+
+TEST(BoxMesh, FacesAreSquaresFacingOutAlongTheirNormals) {
+    const Mesh mesh = build_box_mesh();
+    ASSERT_EQ(mesh.vertices.size(), 24u);
+    ASSERT_EQ(mesh.indices.size(), 36u);
+    for (size_t i = 0; i < mesh.indices.size(); i += 3) {
+        std::array<Point, 3> p;
+        for (size_t k = 0; k < 3; ++k) {
+            const MeshVertex& v = mesh.vertices[mesh.indices[i + k]];
+            EXPECT_EQ(v.local[3], kBoxVertex);
+            p[k] = {v.local[0], v.local[1], v.local[2]};
+        }
+        const MeshVertex& first = mesh.vertices[mesh.indices[i]];
+        const Point normal = {first.normal[0], first.normal[1], first.normal[2]};
+        // Every corner on the face the normal names, and the winding counter-clockwise
+        // seen from outside.
+        for (const Point& corner : p) EXPECT_DOUBLE_EQ(dot(corner, normal), 1.0);
+        const Point winding = cross(sub(p[1], p[0]), sub(p[2], p[0]));
+        EXPECT_DOUBLE_EQ(dot(winding, normal), 4.0) << "triangle " << i / 3;
+    }
+}
+
+Solid capsule(Vec3 start, Vec3 end, float radius) {
+    Solid solid;
+    solid.start = start;
+    solid.end = end;
+    solid.radius = radius;
+    return solid;
+}
+
+Solid box(Vec3 centre, Quat orientation, Vec3 half_extents) {
+    Solid solid;
+    solid.kind = Solid::Kind::Box;
+    solid.start = centre;
+    solid.orientation = orientation;
+    solid.half_extents = half_extents;
+    return solid;
 }
 
 class BuildInstances : public ::testing::Test {
@@ -84,12 +122,12 @@ class BuildInstances : public ::testing::Test {
     DrawCounts build() { return build_instances(frame_, out_); }
 
     Frame frame_;
-    std::array<CapsuleInstance, kMaxInstances> out_{};
+    std::array<PrimitiveInstance, kMaxInstances> out_{};
 };
 
 TEST_F(BuildInstances, NothingActiveNothingDrawn) {
     const DrawCounts counts = build();
-    EXPECT_EQ(counts.physical + counts.ghost, 0u);
+    EXPECT_EQ(counts.total(), 0u);
 }
 
 TEST_F(BuildInstances, JointsAndOneBonePerParentedJoint) {
@@ -98,9 +136,9 @@ TEST_F(BuildInstances, JointsAndOneBonePerParentedJoint) {
     frame_.parents[1] = 0;
     frame_.parents[2] = 1;
     const DrawCounts counts = build();
-    EXPECT_EQ(counts.physical, 26u + 2u);
+    EXPECT_EQ(counts.physical_capsules, 26u + 2u);
     EXPECT_EQ(counts.ghost, 26u + 2u);
-    const CapsuleInstance& bone = out_[26];
+    const PrimitiveInstance& bone = out_[26];
     EXPECT_FLOAT_EQ(bone.start[0], 0.0f);
     EXPECT_FLOAT_EQ(bone.end[0], 0.01f);
     EXPECT_FLOAT_EQ(bone.end[3], 0.01f * frame_.settings.bone_radius_scale);
@@ -114,7 +152,7 @@ TEST_F(BuildInstances, EveryJointAndBoneOfBothHandsFits) {
         frame_.parents[j] = (j + 1) % kJointCount;
     }
     const DrawCounts counts = build();
-    EXPECT_EQ(counts.physical + counts.ghost, static_cast<uint32_t>(kMaxInstances));
+    EXPECT_EQ(counts.total(), static_cast<uint32_t>(kMaxInstances));
 }
 
 TEST_F(BuildInstances, ContactTintOnlyOnTouchingPhysicalJointsWhenOn) {
@@ -126,7 +164,7 @@ TEST_F(BuildInstances, ContactTintOnlyOnTouchingPhysicalJointsWhenOn) {
     DrawCounts counts = build();
     EXPECT_EQ(out_[4].color, (std::array<float, 4>{1.0f, 0.0f, 0.0f, 1.0f}));
     EXPECT_EQ(out_[5].color, (std::array<float, 4>{0.0f, 1.0f, 0.0f, 1.0f}));
-    EXPECT_EQ(out_[counts.physical + 4].color,
+    EXPECT_EQ(out_[counts.physical_capsules + 4].color,
               (std::array<float, 4>{0.0f, 1.0f, 0.0f, frame_.settings.ghost_alpha}));
     frame_.settings.tint = false;
     counts = build();
@@ -143,7 +181,7 @@ TEST_F(BuildInstances, BonesWithAnEndJointInContactAreTinted) {
     frame_.settings.contact_tint = {1.0f, 0.0f, 0.0f};
     frame_.settings.hand_colors[1] = {0.0f, 1.0f, 0.0f};
     const DrawCounts counts = build();
-    ASSERT_EQ(counts.physical, static_cast<uint32_t>(kJointCount + 3));
+    ASSERT_EQ(counts.physical_capsules, static_cast<uint32_t>(kJointCount + 3));
     const std::array<float, 4> tint{1.0f, 0.0f, 0.0f, 1.0f}, hand_color{0.0f, 1.0f, 0.0f, 1.0f};
     EXPECT_EQ(out_[kJointCount].color, tint);            // 4-5: its child end touches
     EXPECT_EQ(out_[kJointCount + 1].color, tint);        // 5-6: its parent end touches
@@ -159,9 +197,9 @@ TEST_F(BuildInstances, GhostPartsWhereThePhysicalOnesAreAreLeftOut) {
     hand.ghost = hand.physical;
     hand.ghost.positions[2].y += 0.01f;  // only joint 2 pressed away
     const DrawCounts counts = build();
-    EXPECT_EQ(counts.physical, 26u + 3u);
+    EXPECT_EQ(counts.physical_capsules, 26u + 3u);
     EXPECT_EQ(counts.ghost, 1u + 2u) << "joint 2 and its bones to 1 and 3";
-    EXPECT_EQ(out_[counts.physical].start[1], 0.01f);
+    EXPECT_EQ(out_[counts.physical_capsules].start[1], 0.01f);
     hand.physical_active = false;
     EXPECT_EQ(build().ghost, 26u + 3u) << "nothing hides the ghost";
 }
@@ -174,7 +212,55 @@ TEST_F(BuildInstances, UnusableJointsAndTheirBonesAreLeftOut) {
     frame_.hands[0].physical.positions[0].x = std::numeric_limits<float>::infinity();
     frame_.hands[0].physical.radii[5] = 0.0f;
     const DrawCounts counts = build();
-    EXPECT_EQ(counts.physical, 24u + 1u);  // bone 1-2 only
+    EXPECT_EQ(counts.physical_capsules, 24u + 1u);  // bone 1-2 only
+}
+
+TEST_F(BuildInstances, SolidsReplaceThePhysicalJointsCapsulesBeforeBoxes) {
+    frame_.parents[1] = 0;
+    for (Hand& hand : frame_.hands) hand.physical_active = true;
+    Hand& right = frame_.hands[1];
+    right.ghost_active = true;
+    right.solid_count = 3;
+    right.solids[0] =
+        box({0.0f, 0.0f, -0.5f}, {0.0f, 0.0f, 0.70710677f, 0.70710677f}, {0.04f, 0.01f, 0.05f});
+    right.solids[0].in_contact = true;
+    right.solids[1] = capsule({0.0f, 0.0f, -0.5f}, {0.0f, 0.03f, -0.5f}, 0.008f);
+    right.solids[2] = capsule({0.1f, 0.0f, -0.5f}, {0.1f, 0.0f, -0.5f}, 0.01f);
+    frame_.settings.contact_tint = {1.0f, 0.0f, 0.0f};
+    frame_.settings.hand_colors[1] = {0.0f, 1.0f, 0.0f};
+    const DrawCounts counts = build();
+    // The left hand has no solids: its 26 joints and one bone, then the right's capsules.
+    ASSERT_EQ(counts.physical_capsules, 26u + 1u + 2u);
+    ASSERT_EQ(counts.physical_boxes, 1u);
+    EXPECT_EQ(counts.ghost, 26u + 1u);
+    const PrimitiveInstance& capsule = out_[27];
+    EXPECT_EQ(capsule.end[1], 0.03f);
+    EXPECT_EQ(capsule.start[3], 0.008f);
+    EXPECT_EQ(capsule.end[3], 0.008f);
+    EXPECT_EQ(capsule.color, (std::array<float, 4>{0.0f, 1.0f, 0.0f, 1.0f}));
+    const PrimitiveInstance& box = out_[counts.physical_capsules];
+    EXPECT_EQ(box.start[2], -0.5f);
+    EXPECT_EQ(box.end[0], 0.04f);
+    EXPECT_EQ(box.end[2], 0.05f);
+    EXPECT_EQ(box.orientation[3], 0.70710677f);
+    EXPECT_EQ(box.color, (std::array<float, 4>{1.0f, 0.0f, 0.0f, 1.0f})) << "it touches";
+    // The ghost is thinner than the joints it follows.
+    const PrimitiveInstance& ghost = out_[counts.physical_capsules + counts.physical_boxes];
+    EXPECT_FLOAT_EQ(ghost.start[3], kGhostThickness * 0.01f);
+}
+
+TEST_F(BuildInstances, UnusableSolidsAreLeftOut) {
+    Hand& hand = frame_.hands[0];
+    hand.physical_active = true;
+    hand.solid_count = 4;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    hand.solids[0] = capsule({0.0f, 0.0f, -0.5f}, {0.0f, 0.0f, -0.5f}, 0.0f);
+    hand.solids[1] = capsule({nan, 0.0f, -0.5f}, {0.0f, 0.0f, -0.5f}, 0.01f);
+    hand.solids[2] = box({0.0f, 0.0f, -0.5f}, {0.0f, 0.0f, 0.0f, 0.0f}, {0.01f, 0.01f, 0.01f});
+    hand.solids[3] = box({0.0f, 0.0f, -0.5f}, {}, {0.01f, -0.01f, 0.01f});
+    EXPECT_EQ(build().total(), 0u);
+    hand.solid_count = 1000;  // more than there is room for: only kMaxSolids are read
+    EXPECT_EQ(build().total(), 0u);
 }
 
 TEST_F(BuildInstances, ColoursAreLinearAndGhostAlphaClamped) {

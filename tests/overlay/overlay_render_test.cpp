@@ -34,6 +34,10 @@ constexpr Color kLeftColor{0.9f, 0.15f, 0.15f};
 constexpr Color kRightColor{0.15f, 0.8f, 0.2f};
 constexpr Color kTint{0.55f, 0.8f, 1.0f};
 constexpr float kGhostAlpha = 0.35f;
+// Where the ghost faces the eye it shows this share of its alpha (ghost.frag), and its
+// joints are drawn kGhostThickness times their radii (hand_geometry.h).
+constexpr float kGhostCentreAlpha = kGhostAlpha * 0.25f;
+constexpr float kGhostThickness = 0.6f;
 
 // At a joint's centre the surface faces the eye, so it shows its full colour; the
 // tessellation and the half-pixel offset of the sample darken it by well under 1%.
@@ -201,7 +205,7 @@ TEST_F(OverlayRenderTest, GhostOnlyJointIsTranslucentHandColourOverTransparent) 
     const Rgba centre = pixels.at(x, y);
     EXPECT_GT(centre.a, 0);
     EXPECT_LT(centre.a, 255);
-    EXPECT_TRUE(near(centre, translucent(kLeftColor, kGhostAlpha)));
+    EXPECT_TRUE(near(centre, translucent(kLeftColor, kGhostCentreAlpha)));
 }
 
 TEST_F(OverlayRenderTest, TouchingPhysicalJointIsOpaqueTint) {
@@ -262,7 +266,7 @@ TEST_F(OverlayRenderTest, PhysicalJointInFrontHidesTheGhost) {
     left().physical_active = true;
     left().ghost_active = true;
     put_joint(left().physical, 0, physical, 0.015f);
-    put_joint(left().ghost, 0, ghost, 0.04f);
+    put_joint(left().ghost, 0, ghost, 0.04f / kGhostThickness);
     const Pixels pixels = draw();
     const auto [x, y] = project(physical);
     EXPECT_TRUE(near(pixels.at(x, y), opaque(kLeftColor)));
@@ -280,10 +284,10 @@ TEST_F(OverlayRenderTest, GhostInFrontIsBlendedOverThePhysicalJoint) {
     left().ghost_active = true;
     put_joint(left().physical, 0, p, 0.01f);
     left().in_contact[0] = true;
-    put_joint(left().ghost, 0, p, 0.03f);
+    put_joint(left().ghost, 0, p, 0.03f / kGhostThickness);
     const Pixels pixels = draw();
-    EXPECT_TRUE(
-        near(pixels.at(project(p).x, project(p).y), over(kLeftColor, kGhostAlpha, kTint, 1.0f)));
+    EXPECT_TRUE(near(pixels.at(project(p).x, project(p).y),
+                     over(kLeftColor, kGhostCentreAlpha, kTint, 1.0f)));
 }
 
 TEST_F(OverlayRenderTest, GhostWhereThePhysicalJointIsLeavesItUntouched) {
@@ -306,7 +310,7 @@ TEST_F(OverlayRenderTest, OverlappingGhostPartsBlendOnce) {
     put_joint(left().ghost, 2, {0.01f, 0.0f, -0.52f}, 0.03f);
     const Pixels pixels = draw();
     const auto [x, y] = project({0.005f, 0.0f, -0.5f});
-    EXPECT_NEAR(pixels.at(x, y).a, std::lround(kGhostAlpha * 255.0f), kTolerance);
+    EXPECT_NEAR(pixels.at(x, y).a, std::lround(kGhostCentreAlpha * 255.0f), kTolerance);
 }
 
 TEST_F(OverlayRenderTest, BonesJoinAJointToItsParent) {
@@ -463,6 +467,59 @@ TEST_F(OverlayRenderTest, AHeadsetsViewsTakeAtMost40MB) {
     renderer_->wait_idle();
     EXPECT_LE(renderer_->memory_bytes(), 40'000'000u);
     EXPECT_GT(renderer_->memory_bytes(), 0u);
+}
+
+// A box solid is drawn as a box, turned as its orientation says: 8 x 4 cm turned a
+// quarter about the view axis shows 4 cm wide and 8 cm tall, to its corners.
+TEST_F(OverlayRenderTest, ABoxSolidIsDrawnToItsCornersAndTurned) {
+    right().physical_active = true;
+    right().solid_count = 1;
+    Solid& box = right().solids[0];
+    box.kind = Solid::Kind::Box;
+    box.start = {0.0f, 0.0f, -0.5f};
+    box.half_extents = {0.04f, 0.02f, 0.01f};
+    const float half_turn = std::sin(std::numbers::pi_v<float> / 4);
+    box.orientation = {0.0f, 0.0f, half_turn, half_turn};
+    const Pixels pixels = draw();
+    const Vec3 front_corner{0.018f, 0.038f, -0.49f};
+    const auto corner = project(front_corner);
+    EXPECT_EQ(pixels.at(corner.x, corner.y).a, 255) << "a sphere or capsule would miss the corner";
+    EXPECT_GT(pixels.at(corner.x, corner.y).g, 2 * pixels.at(corner.x, corner.y).r);
+    for (const Vec3 outside : {Vec3{0.025f, 0.0f, -0.49f}, Vec3{0.0f, 0.045f, -0.49f}}) {
+        const auto [x, y] = project(outside);
+        EXPECT_EQ(pixels.at(x, y).a, 0);
+    }
+}
+
+TEST_F(OverlayRenderTest, ATouchingSolidIsTinted) {
+    const Vec3 p{0.0f, 0.0f, -0.5f};
+    left().physical_active = true;
+    left().solid_count = 2;
+    left().solids[0].start = {-0.02f, 0.0f, -0.5f};
+    left().solids[0].end = {0.02f, 0.0f, -0.5f};
+    left().solids[0].radius = 0.01f;
+    left().solids[0].in_contact = true;
+    left().solids[1].start = left().solids[1].end = {0.0f, 0.05f, -0.5f};
+    left().solids[1].radius = 0.01f;
+    const Pixels pixels = draw();
+    EXPECT_TRUE(near(pixels.at(project(p).x, project(p).y), opaque(kTint)));
+    const auto [x, y] = project({0.0f, 0.05f, -0.5f});
+    EXPECT_TRUE(near(pixels.at(x, y), opaque(kLeftColor)));
+}
+
+// The ghost reads as an outline: more opaque toward its silhouette than where it faces
+// the eye.
+TEST_F(OverlayRenderTest, TheGhostsRimIsMoreOpaqueThanItsMiddle) {
+    const Vec3 p{0.0f, 0.0f, -0.5f};
+    const float radius = 0.04f;  // as drawn
+    left().ghost_active = true;
+    put_joint(left().ghost, 0, p, radius / kGhostThickness);
+    const Pixels pixels = draw();
+    const auto [x, y] = project(p);
+    const auto rim = static_cast<uint32_t>(0.9f * projected_radius(p, radius));
+    EXPECT_NEAR(pixels.at(x, y).a, std::lround(kGhostCentreAlpha * 255.0f), kTolerance);
+    EXPECT_GT(pixels.at(x + rim, y).a, 2 * pixels.at(x, y).a);
+    EXPECT_LE(pixels.at(x + rim, y).a, std::lround(kGhostAlpha * 255.0f));
 }
 
 TEST_F(OverlayRenderTest, RealHandsDrawBothColoursAndTheTint) {

@@ -88,7 +88,10 @@ class OverlayLayerTest : public ::testing::Test {
     }
 
     void TearDown() override {
-        unsetenv("PHYSHAND_SIM_REJECT_LAYERS_OVER");
+        for (const char* name : {"PHYSHAND_SIM_REJECT_LAYERS_OVER", "PHYSHAND_SIM_HEAD_POSITION",
+                                 "PHYSHAND_SIM_HEAD_PITCH_DEG"}) {
+            unsetenv(name);
+        }
         unsetenv("PHYSHAND_SIM_SWAPCHAIN_WAIT_MS");
         if (session_ != XR_NULL_HANDLE) xrDestroySession(session_);
         if (device_ != VK_NULL_HANDLE) {
@@ -325,6 +328,7 @@ class OverlayLayerTest : public ::testing::Test {
             trackers_[1], &joints_info, &locations));
         ASSERT_TRUE(locations.isActive);
         wrist_ = joints[XR_HAND_JOINT_WRIST_EXT].pose.position;
+        right_joints_ = joints;
 
         ASSERT_NO_FATAL_FAILURE(clear_image());
         std::array<XrCompositionLayerProjectionView, 2> projection_views{};
@@ -358,6 +362,8 @@ class OverlayLayerTest : public ::testing::Test {
     }
 
     // The newest captured image of view 0.
+    PngImage press_table_seen_from(const char* head, const char* pitch_deg);
+
     PngImage last_capture() const {
         fs::path newest;
         for (const auto& entry : fs::directory_iterator(dir_ / "capture")) {
@@ -384,6 +390,7 @@ class OverlayLayerTest : public ::testing::Test {
     std::vector<VkImage> images_;
     std::array<XrView, 2> views_{};
     XrVector3f wrist_{};
+    std::array<XrHandJointLocationEXT, XR_HAND_JOINT_COUNT_EXT> right_joints_{};  // physical
     std::int32_t view_size_ = kSize;        // of the app's views, at the swapchain's top left
     std::atomic<XrTime> display_time_ = 0;  // of the latest frame
     std::chrono::steady_clock::duration end_frame_took_{};  // its xrEndFrame
@@ -560,8 +567,8 @@ TEST_F(OverlayLayerTest, OverlayOffInTheConfigLeavesTheAppsFrameAlone) {
 
 // The configured drawing (no colour of it one of the defaults' red, green or light blue)
 // reaches the renderer: the right hand's physical joints, all on the box, in the contact
-// colour, yellow; its ghost below them in the hand's colour, magenta, opaque as configured
-// (at the default opacity it would be blended into the app's grey).
+// colour, yellow; its ghost below them in the hand's colour, magenta, at its most opaque as
+// configured (at the default opacity it would be blended into the app's grey).
 TEST_F(OverlayLayerTest, ConfiguredColorsAndGhostOpacityAreDrawn) {
     write_config(box_config(
         R"(, "colors": {"right": [1, 0, 1], "contact": [1, 1, 0]}, "ghost_opacity": 1)"));
@@ -571,7 +578,8 @@ TEST_F(OverlayLayerTest, ConfiguredColorsAndGhostOpacityAreDrawn) {
     ASSERT_GT(png.width, 0u);
     const auto magenta = [&](int x, int y) {
         const std::uint8_t* p = png.at(x, y);
-        return p[0] > 150 && p[2] > 150 && p[1] < 60;
+        // The ghost is see-through where it faces the eye, so the app's grey shows in it.
+        return p[0] > 150 && p[2] > 150 && p[1] + 50 < p[0];
     };
     const auto yellow = [&](int x, int y) {
         const std::uint8_t* p = png.at(x, y);
@@ -657,3 +665,105 @@ INSTANTIATE_TEST_SUITE_P(OverlayLayerTest, OverlayBadViewTest, ::testing::Values
                          });
 
 }  // namespace
+
+namespace physhand_press_table {
+
+// The right hand green and its contact tint blue, both opaque; its ghost green too, at its
+// most opaque, which leaves it see-through where it faces the eye.
+constexpr const char* kConfig = R"({"colliders": [{"id": "table", "shape": "box",
+    "half_extents": [0.4, 0.025, 0.3], "motion": "static",
+    "pose": {"position": [0, 0.725, -0.4]}}],
+    "colors": {"right": [0, 1, 0], "contact": [0, 0, 1]}, "ghost_opacity": 1})";
+constexpr int kPressedFrame = 270;  // 3 s in: the ghost has been 5 cm deep for a second
+
+bool physical(const std::uint8_t* p) {
+    return p[0] < 40 && (p[1] > 80 || p[2] > 80);
+}
+bool ghost(const std::uint8_t* p) {
+    return p[0] > 60 && p[1] > p[0] + 25;
+}
+
+}  // namespace physhand_press_table
+
+// press_table played to kPressedFrame with the head at `head` (X,Y,Z) pitched `pitch_deg`:
+// view 0 of that frame.
+PngImage OverlayLayerTest::press_table_seen_from(const char* head, const char* pitch_deg) {
+    using namespace physhand_press_table;
+    setenv("PHYSHAND_SIM_SCENE", PHYSHAND_SCENES_DIR "/press_table.json", 1);
+    setenv("PHYSHAND_SIM_HEAD_POSITION", head, 1);
+    setenv("PHYSHAND_SIM_HEAD_PITCH_DEG", pitch_deg, 1);
+    setenv("PHYSHAND_SIM_CAPTURE_EVERY", std::to_string(kPressedFrame).c_str(), 1);
+    write_config(kConfig);
+    start();
+    for (int i = 0; i < kPressedFrame && !HasFatalFailure(); ++i) frame();
+    return HasFatalFailure() ? PngImage{} : last_capture();
+}
+
+// press_table seen from the side with the eyes at the height of the table's top, which is
+// then a line across the image: the physical hand rests on the table, so it is drawn above
+// that line, and its ghost, pressed 5 cm into the table, below it.
+TEST_F(OverlayLayerTest, PressedIntoATableTheGhostIsDrawnBelowTheTopAndThePhysicalHandAbove) {
+    using namespace physhand_press_table;
+    const PngImage png = press_table_seen_from("0.1,0.75,0.1", "0");
+    ASSERT_GT(png.width, 0u);
+    // LOCAL starts at the head: the table's top is at its height.
+    const auto [u, v] = project(views_[0], {0.0f, 0.0f, -0.4f});
+    const int line = static_cast<int>(v * png.height);
+    const int band = static_cast<int>(png.height / 100) + 1;  // a depth of 2-3 mm
+    int physical_above = 0, physical_below = 0, ghost_above = 0, ghost_below = 0;
+    for (int y = 0; y < static_cast<int>(png.height); ++y) {
+        for (int x = 0; x < static_cast<int>(png.width); ++x) {
+            const std::uint8_t* p = png.at(x, y);
+            if (y < line - band) {
+                physical_above += physical(p);
+                ghost_above += ghost(p);
+            } else if (y > line + band) {
+                physical_below += physical(p);
+                ghost_below += ghost(p);
+            }
+        }
+    }
+    EXPECT_GT(physical_above, 200);
+    EXPECT_GT(ghost_below, 200);
+    EXPECT_LT(physical_below, physical_above / 50)
+        << physical_below << " physical pixels below the table's top";
+    EXPECT_LT(ghost_above, ghost_below / 10)
+        << ghost_above << " ghost pixels above the table's top";
+}
+
+// The default drive's palm is a box: seen from above, the hand resting on the table covers
+// the whole of its palm between the wrist and the knuckles, where joint spheres and bones
+// leave gaps between the metacarpals.
+TEST_F(OverlayLayerTest, ThePalmIsDrawnAsTheBoxItCollidesAs) {
+    using namespace physhand_press_table;
+    const PngImage png = press_table_seen_from("0.1,1.1,-0.35", "-90");
+    ASSERT_GT(png.width, 0u);
+    const auto at = [&](XrHandJointEXT joint) { return right_joints_[joint].pose.position; };
+    const XrVector3f wrist = at(XR_HAND_JOINT_WRIST_EXT);
+    const XrVector3f index = at(XR_HAND_JOINT_INDEX_PROXIMAL_EXT);
+    const XrVector3f little = at(XR_HAND_JOINT_LITTLE_PROXIMAL_EXT);
+    int points = 0, covered = 0;
+    std::string uncovered;
+    for (int i = 2; i <= 8; ++i) {
+        for (int j = 1; j <= 9; ++j) {
+            const float s = 0.1f * i, t = 0.1f * j;
+            const auto lerp = [&](float a, float b, float c) {
+                return a + s * ((1 - t) * b + t * c - a);
+            };
+            const XrVector3f point{lerp(wrist.x, index.x, little.x),
+                                   lerp(wrist.y, index.y, little.y),
+                                   lerp(wrist.z, index.z, little.z)};
+            const auto [u, v] = project(views_[0], point);
+            const int x = static_cast<int>(u * png.width), y = static_cast<int>(v * png.height);
+            ASSERT_TRUE(x >= 0 && y >= 0 && x < static_cast<int>(png.width) &&
+                        y < static_cast<int>(png.height));
+            ++points;
+            if (physical(png.at(x, y))) {
+                ++covered;
+            } else {
+                uncovered += " (" + std::to_string(i) + ", " + std::to_string(j) + ")";
+            }
+        }
+    }
+    EXPECT_EQ(covered, points) << "uncovered:" << uncovered;
+}

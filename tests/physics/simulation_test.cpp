@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <string>
+
 #include "test_scenes.h"
 
 namespace physhand {
@@ -55,6 +59,68 @@ TEST(Simulation, AStaticBoxBlocksTheHandWhileTheGhostSinksIn) {
     EXPECT_TRUE(h.in_contact[index_of(Joint::Palm)]);
     EXPECT_GT(h.drive_force[index_of(Joint::Palm)], 0.0);
     EXPECT_FALSE(sim.contacts().empty());
+}
+
+// The distance from `p` to the nearest point of a capsule's axis segment.
+double to_axis(const HandSolid& capsule, const Vec3& p) {
+    const Vec3 half = capsule.pose.orientation * Vec3(0, 0, capsule.size.z());
+    const Vec3 a = capsule.pose.position - half, b = capsule.pose.position + half;
+    const double t = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+    return (a + t * (b - a) - p).norm();
+}
+
+// The bodies are where the returned joints say: each finger capsule's axis runs through
+// the joints it carries, a sphere is centred on its joint, and a palm pressed on a table
+// is a box whose underside rests on the table's top.
+TEST(Simulation, HandSolidsAreTheBodiesWhereTheJointsAre) {
+    for (const char* drive : {"bones", "implicit"}) {
+        SCOPED_TRACE(drive);
+        SimulationSettings settings;
+        settings.drive = *find_drive(drive);
+        Simulation sim(settings, Vec3(0, -9.81, 0));
+        EXPECT_EQ(sim.hand_solids(HandSide::Right).count, 0u) << "no hand yet";
+        // Far from the block first (not simulated), then pressed 4 cm into its top.
+        sim.add_collider(static_box("block", Vec3(0, 0.5, 0), Vec3(0.3, 0.5, 0.3)));
+        sim.step_to(1 / 90.0, {HandPose{}, right_hand(Vec3(0, 1.3, -0.05), 0.0)});
+        ASSERT_FALSE(sim.hand(HandSide::Right).simulated);
+        const bool bones = std::string(drive) == "bones";
+        EXPECT_EQ(sim.hand_solids(HandSide::Right).count, bones ? 16u : 26u);
+        for (int f = 2; f <= 180; ++f) {
+            const double y = std::max(0.98, 1.3 - f * 0.004);
+            sim.step_to(f / 90.0, {HandPose{}, right_hand(Vec3(0, y, -0.05), 0.0)});
+        }
+        const PhysicalHandState& hand = sim.hand(HandSide::Right);
+        ASSERT_TRUE(hand.simulated);
+        const HandSolids solids = sim.hand_solids(HandSide::Right);
+        ASSERT_EQ(solids.count, bones ? 16u : 26u);
+        EXPECT_EQ(sim.hand_solids(HandSide::Left).count, 0u) << "an untracked hand has none";
+        int touching = 0;
+        for (std::size_t i = 0; i < solids.count; ++i) {
+            const HandSolid& solid = solids.parts[i];
+            touching += solid.in_contact;
+            if (solid.kind == HandSolid::Kind::Box) {
+                EXPECT_TRUE(bones);
+                EXPECT_EQ(i, 0u) << "the palm is the first body";
+                const Vec3 down = solid.pose.orientation * Vec3(0, -solid.size.y(), 0);
+                EXPECT_NEAR(std::abs(down.y()), solid.size.y(), 1e-3) << "lying flat";
+                EXPECT_NEAR(solid.pose.position.y() - std::abs(down.y()), 1.0, 2e-3)
+                    << "its underside on the table's top";
+                EXPECT_TRUE(solid.in_contact);
+            }
+        }
+        EXPECT_GT(touching, 0);
+        for (const Joint joint : {Joint::IndexIntermediate, Joint::IndexTip, Joint::ThumbTip}) {
+            const Vec3 p = hand.joints[joint].position;
+            double nearest = 1.0;
+            for (std::size_t i = 0; i < solids.count; ++i) {
+                const HandSolid& solid = solids.parts[i];
+                nearest = std::min(nearest, solid.kind == HandSolid::Kind::Capsule
+                                                ? to_axis(solid, p)
+                                                : (solid.pose.position - p).norm());
+            }
+            EXPECT_LT(nearest, 1e-6) << index_of(joint);
+        }
+    }
 }
 
 TEST(Simulation, ShortDropoutsHoldTheHandAndLongOnesLetGo) {

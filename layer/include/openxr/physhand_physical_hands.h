@@ -22,6 +22,7 @@
 **   1010041003  XR_TYPE_PHYSICAL_COLLIDER_LOCATIONS_PHYSHAND
 **   1010041004  XR_TYPE_HAND_JOINTS_PHYSICAL_STATE_PHYSHAND
 **   1010041005  XR_TYPE_HAND_DRIVE_INFO_PHYSHAND
+**   1010041006  XR_TYPE_HAND_COLLISION_SHAPES_PHYSHAND (spec version 2)
 **   1010041000  XR_OBJECT_TYPE_PHYSICAL_COLLIDER_PHYSHAND
 **
 ** Frames and time. The layer simulates in the session's STAGE reference space (LOCAL if
@@ -41,6 +42,7 @@
 **   XR_ERROR_TIME_INVALID        `time` <= 0.
 **   XR_ERROR_HANDLE_INVALID      a session or collider the layer does not know (destroyed,
 **                                or from another session), or an XR_NULL_HANDLE space.
+**   XR_ERROR_SIZE_INSUFFICIENT   an output array too small (two-call idiom).
 **   XR_ERROR_RUNTIME_FAILURE     anything unexpected inside the layer (the app is never
 **                                crashed), or a session the layer could not set up.
 ** Errors from the runtime (for example an invalid XrSpace) are returned unchanged.
@@ -58,7 +60,8 @@ extern "C" {
 #endif
 
 #define XR_PHYSHAND_physical_hands 1
-#define XR_PHYSHAND_physical_hands_SPEC_VERSION 1
+/* Version 2 adds XrHandCollisionShapesPHYSHAND; version 1's behaviour is unchanged. */
+#define XR_PHYSHAND_physical_hands_SPEC_VERSION 2
 #define XR_PHYSHAND_PHYSICAL_HANDS_EXTENSION_NAME "XR_PHYSHAND_physical_hands"
 
 XR_DEFINE_HANDLE(XrPhysicalColliderPHYSHAND)
@@ -69,6 +72,7 @@ XR_DEFINE_HANDLE(XrPhysicalColliderPHYSHAND)
 #define XR_TYPE_PHYSICAL_COLLIDER_LOCATIONS_PHYSHAND ((XrStructureType)1010041003)
 #define XR_TYPE_HAND_JOINTS_PHYSICAL_STATE_PHYSHAND ((XrStructureType)1010041004)
 #define XR_TYPE_HAND_DRIVE_INFO_PHYSHAND ((XrStructureType)1010041005)
+#define XR_TYPE_HAND_COLLISION_SHAPES_PHYSHAND ((XrStructureType)1010041006)
 #define XR_OBJECT_TYPE_PHYSICAL_COLLIDER_PHYSHAND ((XrObjectType)1010041000)
 
 /* Shapes, in the collider's local frame (the frame of its pose). Zero is no shape, so a
@@ -107,6 +111,14 @@ typedef enum XrHandDriveKindPHYSHAND {
     XR_HAND_DRIVE_KIND_BONES_PHYSHAND = 3,
     XR_HAND_DRIVE_KIND_MAX_ENUM_PHYSHAND = 0x7FFFFFFF
 } XrHandDriveKindPHYSHAND;
+
+/* The shapes a physical hand collides as (XrHandCollisionShapesPHYSHAND). */
+typedef enum XrHandCollisionShapeKindPHYSHAND {
+    XR_HAND_COLLISION_SHAPE_KIND_SPHERE_PHYSHAND = 0,
+    XR_HAND_COLLISION_SHAPE_KIND_CAPSULE_PHYSHAND = 1,
+    XR_HAND_COLLISION_SHAPE_KIND_BOX_PHYSHAND = 2,
+    XR_HAND_COLLISION_SHAPE_KIND_MAX_ENUM_PHYSHAND = 0x7FFFFFFF
+} XrHandCollisionShapeKindPHYSHAND;
 
 typedef XrFlags64 XrPhysicalColliderFlagsPHYSHAND;
 /* A joint of the left (right) hand touched the collider during the last simulation step. */
@@ -205,6 +217,35 @@ typedef struct XrHandJointsPhysicalStatePHYSHAND {
     ** locations are exactly the runtime's. */
     XrBool32 isSimulated;
 } XrHandJointsPhysicalStatePHYSHAND;
+
+/* One body of the physical hand. `pose` is its centre in baseSpace; a capsule's axis is
+** the pose's Z axis. `size`: a sphere's radius in x; a capsule's radius in x and half the
+** distance between the centres of its two ends in z; a box's half extents. */
+typedef struct XrHandCollisionShapePHYSHAND {
+    XrHandCollisionShapeKindPHYSHAND kind;
+    XrPosef pose;
+    XrVector3f size;
+    /* The body touched a collider during the last simulation step. */
+    XrBool32 inContact;
+} XrHandCollisionShapePHYSHAND;
+
+/* Since spec version 2. Chained to XrHandJointLocationsEXT::next: the bodies the physical
+** hand collides as, placed as the returned joints are (drawn as they are, they show what
+** touches: the default drive's palm is a box and its fingers one capsule per bone; the
+** paper and implicit drives' hands are a sphere per joint). Two-call idiom:
+** shapeCapacityInput 0 asks for shapeCountOutput only; a capacity under it fails with
+** XR_ERROR_SIZE_INSUFFICIENT (shapeCountOutput set). A hand has at most
+** XR_HAND_JOINT_COUNT_EXT shapes, and none when it is not active or its tracker is not
+** one the layer simulates (another joint set, or a locate with anything chained to its
+** info). A hand far from every collider is not simulated: its shapes are then where its
+** bodies would be on the tracked hand. */
+typedef struct XrHandCollisionShapesPHYSHAND {
+    XrStructureType type; /* XR_TYPE_HAND_COLLISION_SHAPES_PHYSHAND */
+    void* XR_MAY_ALIAS next;
+    uint32_t shapeCapacityInput;
+    uint32_t shapeCountOutput;
+    XrHandCollisionShapePHYSHAND* shapes;
+} XrHandCollisionShapesPHYSHAND;
 
 /* Changes the hand drive of both hands of a session, from the next simulation step on.
 ** stiffness (N/m), damping (N*s/m) and forceLimit (N per body) must be >= 0, substeps
