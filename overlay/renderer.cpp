@@ -250,11 +250,20 @@ void Renderer::Impl::record(const FrameSlot& slot, const Frame& frame, DrawCount
     const VkDeviceSize offsets[] = {0, 0};
     vk.vkCmdBindVertexBuffers(commands, 0, 2, vertex_buffers, offsets);
     vk.vkCmdBindIndexBuffer(commands, mesh.buffer, index_offset, VK_INDEX_TYPE_UINT16);
-    const auto capsules = [&](VkPipeline pipeline, uint32_t count, uint32_t first) {
-        if (count > 0) {
-            vk.vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-            vk.vkCmdDrawIndexed(commands, capsule_index_count, count, 0, 0, first);
-        }
+    // The physical hands' capsules then boxes (each on its own mesh), and the ghost's two
+    // passes over its capsules.
+    const uint32_t physical = counts.physical_capsules + counts.physical_boxes;
+    const auto draw_physical = [&] {
+        if (physical == 0) return;
+        vk.vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.physical);
+        vk.vkCmdDrawIndexed(commands, capsule_index_count, counts.physical_capsules, 0, 0, 0);
+        vk.vkCmdDrawIndexed(commands, box_index_count, counts.physical_boxes, capsule_index_count,
+                            box_vertex_offset, counts.physical_capsules);
+    };
+    const auto draw_ghost = [&](VkPipeline pipeline) {
+        if (counts.ghost == 0) return;
+        vk.vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+        vk.vkCmdDrawIndexed(commands, capsule_index_count, counts.ghost, 0, 0, physical);
     };
     const VkRenderPass pass = render_pass(frame.final_layout);
     const VkDescriptorSet resolve_input = targets->resolve_input();
@@ -282,18 +291,9 @@ void Renderer::Impl::record(const FrameSlot& slot, const Frame& frame, DrawCount
         const PushConstants constants{view_projection(view.eye), {eye.x, eye.y, eye.z, 1.0f}};
         vk.vkCmdPushConstants(commands, pipelines.draw_layout, VK_SHADER_STAGE_VERTEX_BIT, 0,
                               sizeof(constants), &constants);
-        capsules(pipelines.physical, counts.physical_capsules, 0);
-        if (counts.physical_boxes > 0) {
-            // The physical pipeline is bound: boxes are drawn with it, on their own mesh.
-            if (counts.physical_capsules == 0) {
-                vk.vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.physical);
-            }
-            vk.vkCmdDrawIndexed(commands, box_index_count, counts.physical_boxes,
-                                capsule_index_count, box_vertex_offset, counts.physical_capsules);
-        }
-        const uint32_t first_ghost = counts.physical_capsules + counts.physical_boxes;
-        capsules(pipelines.ghost_depth, counts.ghost, first_ghost);
-        capsules(pipelines.ghost_color, counts.ghost, first_ghost);
+        draw_physical();
+        draw_ghost(pipelines.ghost_depth);
+        draw_ghost(pipelines.ghost_color);
         vk.vkCmdNextSubpass(commands, VK_SUBPASS_CONTENTS_INLINE);
         vk.vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.resolve);
         vk.vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_GRAPHICS,
