@@ -197,7 +197,14 @@ ColliderShape make_collider_shape(const Collider& c) {
                                                              static_cast<btScalar>(s.offset));
             break;
     }
-    if (s.kind != ShapeKind::Sphere && s.kind != ShapeKind::Capsule) out.shape->setMargin(kMargin);
+    // A triangle has no inside to keep a margin in: Bullet's triangles collide their margin
+    // outside the surface, and everything rested kMargin above a mesh (a hand pressed on a
+    // table made of triangles buzzed at 0.74 mm RMS, 0.20 mm without; press_table).
+    if (s.kind == ShapeKind::Mesh) {
+        out.shape->setMargin(0.0f);
+    } else if (s.kind != ShapeKind::Sphere && s.kind != ShapeKind::Capsule) {
+        out.shape->setMargin(kMargin);
+    }
     return out;
 }
 

@@ -138,5 +138,60 @@ TEST_P(RestingColliders, StayWhereTheyArePut) {
 
 INSTANTIATE_TEST_SUITE_P(Substeps, RestingColliders, ::testing::Values(1, 2, 4, 8));
 
+// A table top as a modelling tool exports one: two triangles per 25 cm cell.
+Collider mesh_table() {
+    constexpr int kCells = 8;
+    Collider c;
+    c.id = "mesh table";
+    c.shape.kind = ShapeKind::Mesh;
+    for (int i = 0; i <= kCells; ++i) {
+        for (int k = 0; k <= kCells; ++k) {
+            c.shape.vertices.push_back(
+                Vec3(-1.0 + 2.0 * i / kCells, kTableTop, -1.0 + 2.0 * k / kCells));
+        }
+    }
+    for (int i = 0; i < kCells; ++i) {
+        for (int k = 0; k < kCells; ++k) {
+            const int a = i * (kCells + 1) + k;
+            const int b = a + kCells + 1;
+            c.shape.indices.push_back({a, a + 1, b + 1});
+            c.shape.indices.push_back({a, b + 1, b});
+        }
+    }
+    return c;
+}
+
+// On a static mesh things lie on its surface, not a margin above it (before: every one here
+// rested 1 mm high, at every substep count). Known and open (issue 19), not asserted: on a mesh
+// things dip up to 1.2 mm in their first frames and wander sideways up to 2 mm in 10 s, a box
+// standing on a smaller face where triangles meet up to 18 mm in 60 s; a 2 cm box on its
+// smallest face tips over, and a 2-5 cm rod lying on a mesh rolls away or falls through it.
+TEST_P(RestingColliders, LieOnAMeshAtItsSurface) {
+    const int substeps = GetParam();
+    for (const double size : {0.05, 0.12, 0.2}) {
+        for (const Resting& r : resting_colliders(size)) {
+            if (r.name.starts_with("rod lying")) continue;
+            SCOPED_TRACE(r.name);
+            SimulationSettings settings;
+            settings.drive.substeps = substeps;
+            Simulation sim(settings, Vec3(0, -kGravity, 0));
+            sim.add_collider(mesh_table());
+            Collider c = r.collider;
+            c.pose.position += Vec3(0.06, kTableTop, 0.1);  // inside one triangle
+            const ColliderHandle handle = sim.add_collider(c);
+            const double start = sim.body_state(handle)->pose.position.y();
+            const std::array<HandPose, 2> no_hands{};
+            double height = 0.0;  // mean over the last 5 s, from where it was put
+            constexpr int kFrames = 10 * 90;
+            for (int f = 1; f <= kFrames; ++f) {
+                sim.step_to(f / 90.0, no_hands);
+                if (f > kFrames / 2)
+                    height += (sim.body_state(handle)->pose.position.y() - start) / (kFrames / 2);
+            }
+            EXPECT_LT(std::abs(height), 0.3 * kMaxMotion);
+        }
+    }
+}
+
 }  // namespace
 }  // namespace physhand
