@@ -234,6 +234,12 @@ XRAPI_ATTR XrResult XRAPI_CALL LocatePhysicalCollidersPHYSHAND(
         if (count > 0 && (locateInfo->colliders == nullptr || locations->locations == nullptr)) {
             return XR_ERROR_VALIDATION_FAILURE;
         }
+        auto* impulses = find_in_chain<XrPhysicalColliderImpulsesPHYSHAND>(
+            locations->next, XR_TYPE_PHYSICAL_COLLIDER_IMPULSES_PHYSHAND);
+        if (impulses &&
+            (impulses->impulseCount != count || (count > 0 && impulses->impulses == nullptr))) {
+            return XR_ERROR_VALIDATION_FAILURE;
+        }
         SessionState& state = *locked.state;
         // Every handle is checked before anything changes.
         std::vector<ColliderHandle> handles(count);
@@ -260,6 +266,12 @@ XRAPI_ATTR XrResult XRAPI_CALL LocatePhysicalCollidersPHYSHAND(
             out.angularVelocity =
                 to_xr(located ? frame.orientation * body->angular_velocity : Vec3::Zero());
             out.flags = to_flags(*body);
+            if (!impulses) continue;
+            // Kept for a later read while it cannot be given in the app's space.
+            const HandImpulse given =
+                located ? state.simulation->take_hand_impulse(handles[i]) : HandImpulse{};
+            impulses->impulses[i].linearImpulse = to_xr(frame.orientation * given.linear);
+            impulses->impulses[i].angularImpulse = to_xr(frame.orientation * given.angular);
         }
         return result;
     });

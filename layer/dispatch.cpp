@@ -50,6 +50,10 @@ const Intercept* find_intercept(const char* name) {
         {"xrLocatePhysicalCollidersPHYSHAND", to_void(&LocatePhysicalCollidersPHYSHAND),
          Scope::Extension},
         {"xrSetHandDrivePHYSHAND", to_void(&SetHandDrivePHYSHAND), Scope::Extension},
+        {"xrSetPhysicalContactReportingPHYSHAND", to_void(&SetPhysicalContactReportingPHYSHAND),
+         Scope::Extension},
+        {"xrGetPhysicalContactEventsPHYSHAND", to_void(&GetPhysicalContactEventsPHYSHAND),
+         Scope::Extension},
     };
     for (const Intercept& intercept : intercepts) {
         if (std::strcmp(intercept.name, name) == 0) return &intercept;

@@ -77,5 +77,10 @@ XRAPI_ATTR XrResult XRAPI_CALL LocatePhysicalCollidersPHYSHAND(
 // drive.cpp
 XRAPI_ATTR XrResult XRAPI_CALL SetHandDrivePHYSHAND(XrSession session,
                                                     const XrHandDriveInfoPHYSHAND* driveInfo);
+XRAPI_ATTR XrResult XRAPI_CALL SetPhysicalContactReportingPHYSHAND(
+    XrSession session, const XrPhysicalContactReportingInfoPHYSHAND* reportingInfo);
+XRAPI_ATTR XrResult XRAPI_CALL GetPhysicalContactEventsPHYSHAND(
+    XrSession session, const XrPhysicalContactEventsGetInfoPHYSHAND* getInfo,
+    XrPhysicalContactEventsPHYSHAND* events);
 
 }  // namespace physhand::layer

@@ -76,10 +76,10 @@ struct Simulation::HandSlot {
     // For drawing a hand not simulated yet (hand_solids): the bodies it would have, kept
     // apart so that drawing never changes the physics.
     std::unique_ptr<PhysicalHand> drawn_model;
-    HandPose ghost;                      // latest valid ghost
-    HandPose previous_ghost;             // ghost at the previous step
-    HandPose target;                     // what the drive follows: the ghost, smoothed
-    HandPose previous_target;            // target at the previous step
+    HandPose ghost;            // latest valid ghost
+    HandPose previous_ghost;   // ghost at the previous step
+    HandPose target;           // what the drive follows: the ghost, smoothed
+    HandPose previous_target;  // target at the previous step
     NoiseFilter noise;
     GhostFilter filter;
     TrackingGap gap;
@@ -142,8 +142,18 @@ ColliderHandle Simulation::add_collider(const Collider& collider) {
 }
 bool Simulation::remove_collider(ColliderHandle handle) {
     kinematic_legs_.erase(handle);
+    hand_impulses_.erase(handle);
     return world_->remove_collider(handle);
 }
+HandImpulse Simulation::take_hand_impulse(ColliderHandle handle) {
+    hand_impulses_wanted_ = true;
+    const auto it = hand_impulses_.find(handle);
+    if (it == hand_impulses_.end()) return {};
+    const HandImpulse given = it->second;
+    hand_impulses_.erase(it);
+    return given;
+}
+
 bool Simulation::has_collider(ColliderHandle handle) const {
     return world_->has_collider(handle);
 }
@@ -374,6 +384,7 @@ void Simulation::step_sampling(double time_s, const GhostSource& ghosts_at) {
         step_substeps(substeps);
         tick_ = frame * substeps;
         time_s_ = static_cast<double>(tick_) / rate;
+        contact_events_.record(contacts_, time_s_);
         for (auto& slot : hands_) publish_hand(*slot);
     }
     shown_time_ = time_s;
@@ -434,6 +445,7 @@ void Simulation::step_substeps(int substeps) {
         return;
     }
 
+    world_->set_measure_approach(contact_events_.enabled());
     const double h = 1.0 / (settings_.frame_rate_hz * settings_.drive.substeps);
     const double step_dt = h * substeps;
     // How fast each hand's target moves in this step: the drive can reach it within a substep.
@@ -505,12 +517,22 @@ void Simulation::collect_contacts(ContactIndex& contact_index) {
         const auto key = std::make_tuple(side, body, c.collider);
         auto [it, inserted] = contact_index.try_emplace(key, contacts_.size());
         if (inserted) {
-            contacts_.push_back(
-                {slot.side, slot.body->carried_joints(body).front(), c.collider, 0.0, 0.0});
+            contacts_.push_back({slot.side, slot.body->carried_joints(body).front(), c.collider});
         }
         ContactInfo& info = contacts_[it->second];
+        if (inserted || -c.distance > info.penetration) {
+            info.point = c.point;
+            info.normal = c.normal;
+        }
         info.impulse += c.impulse;
+        info.impulse_on_collider += c.impulse_on_collider;
+        if (hand_impulses_wanted_) {
+            HandImpulse& given = hand_impulses_[c.collider];
+            given.linear += c.impulse_on_collider;
+            given.angular += (c.point - c.collider_centre).cross(c.impulse_on_collider);
+        }
         info.penetration = std::max(info.penetration, -c.distance);
+        info.approach_speed = std::max(info.approach_speed, c.approach_speed);
     });
     for (auto& slot : hands_) {
         if (slot->simulated && !slot->body->contact_response() &&

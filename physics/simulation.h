@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "collider.h"
+#include "contact_events.h"
 #include "drive.h"
 #include "hand_skeleton.h"
 #include "speed_limit.h"
@@ -28,8 +29,6 @@ struct SimulationSettings {
     double reseat_distance = 0.15;  // m of wrist error beyond which the hand is re-seated
     double max_step_s = 0.1;        // time beyond this per call is dropped, not simulated
 };
-
-using ColliderHandle = std::uint32_t;
 
 struct BodyState {
     Pose pose;
@@ -68,6 +67,13 @@ struct HandSolids {
     std::size_t count = 0;
 };
 
+// What the hands did to a collider: the impulse they gave it, and its moment about the
+// collider's centre of mass, world frame.
+struct HandImpulse {
+    Vec3 linear = Vec3::Zero();   // N·s
+    Vec3 angular = Vec3::Zero();  // N·m·s
+};
+
 // Counters of pathological input, for tests and logs.
 struct GuardCounters {
     std::uint64_t rejected_samples = 0;  // NaN/Inf, zero quaternion, absurd jump
@@ -75,14 +81,6 @@ struct GuardCounters {
     std::uint64_t dropouts = 0;        // a tracked hand's samples stopped
     std::uint64_t reacquisitions = 0;  // a lost, simulated hand's ghost came back within grace
     std::uint64_t speed_clamps = 0;    // body-substeps the speed limit slowed down
-};
-
-struct ContactInfo {
-    HandSide hand;
-    Joint joint;
-    ColliderHandle collider;
-    double impulse = 0.0;      // N·s over the step
-    double penetration = 0.0;  // m, >= 0
 };
 
 class World;
@@ -148,7 +146,16 @@ class Simulation {
     // Every pose, velocity and drive force of both hands and of every collider is finite
     // (the nonfinite_count of docs/metrics.md counts frames where this is false).
     bool state_is_finite() const;
+    // Hand-collider contacts of the last physics frame.
     const std::vector<ContactInfo>& contacts() const { return contacts_; }
+    // The impulse both hands gave a collider (normal and friction) since it was last taken,
+    // and forgets it: each frame's share is taken once, whoever asks how often. Zero for one
+    // they did not touch or that does not exist, and before the first call (nothing is
+    // summed until someone asks). Static and kinematic colliders too: an app
+    // that moves an object itself applies it in its own engine.
+    HandImpulse take_hand_impulse(ColliderHandle handle);
+    // Begin / persist / end of hand-collider contacts, frame by frame, once enabled.
+    ContactEventLog& contact_events() { return contact_events_; }
     // Deepest hand-collider penetration at the end of any substep of the last step, m.
     double last_max_penetration() const { return last_max_penetration_; }
     const GuardCounters& guard_counters() const { return guards_; }
@@ -190,6 +197,9 @@ class Simulation {
     std::unique_ptr<World> world_;
     std::array<std::unique_ptr<HandSlot>, 2> hands_;
     std::vector<ContactInfo> contacts_;
+    ContactEventLog contact_events_;
+    std::map<ColliderHandle, HandImpulse> hand_impulses_;  // not taken yet
+    bool hand_impulses_wanted_ = false;
     // A kinematic collider on its way to a timed target, from where it was at from_t.
     struct KinematicLeg {
         Pose from, to;

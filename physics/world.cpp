@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "bullet_convert.h"
 #include "capsule_box_collision.h"
@@ -41,11 +42,21 @@ class HandWorld : public btDiscreteDynamicsWorld {
           max_speed_(max_speed) {}
     // What the limit found in the last substep.
     const SpeedCheck& last_check() const { return last_check_; }
+    // Only contact events need approach speeds.
+    void set_measure_approach(bool measure) { measure_approach_ = measure; }
+    // How fast a hand-collider pair approached before the last substep's solver (0 for a
+    // manifold that is not one, or when they are not measured).
+    double approach_speed(const btPersistentManifold* m) const {
+        const auto it = approach_speed_.find(m);
+        return it == approach_speed_.end() ? 0.0 : it->second;
+    }
 
   protected:
     void performDiscreteCollisionDetection() override {
         btDiscreteDynamicsWorld::performDiscreteCollisionDetection();
         add_hand_point_contacts(dispatcher_);
+        approach_speed_.clear();
+        if (measure_approach_) note_approach_speeds();
     }
     void integrateTransforms(btScalar h) override {
         last_check_ = {};
@@ -58,9 +69,38 @@ class HandWorld : public btDiscreteDynamicsWorld {
     }
 
   private:
+    // Velocities here are those the last substep ended with: what the hand hit with.
+    void note_approach_speeds() {
+        for (int i = 0; i < dispatcher_.getNumManifolds(); ++i) {
+            const btPersistentManifold* m = dispatcher_.getManifoldByIndexInternal(i);
+            const bool hand0 = role_of(m->getBody0()) == BodyRole::Hand;
+            const bool hand1 = role_of(m->getBody1()) == BodyRole::Hand;
+            if (hand0 == hand1) continue;
+            const auto* a = btRigidBody::upcast(m->getBody0());
+            const auto* b = btRigidBody::upcast(m->getBody1());
+            double fastest = 0.0;
+            for (int p = 0; p < m->getNumContacts(); ++p) {
+                const btManifoldPoint& pt = m->getContactPoint(p);
+                btVector3 va(0, 0, 0), vb(0, 0, 0);
+                if (a)
+                    va = a->getVelocityInLocalPoint(pt.getPositionWorldOnA() -
+                                                    a->getCenterOfMassPosition());
+                if (b)
+                    vb = b->getVelocityInLocalPoint(pt.getPositionWorldOnB() -
+                                                    b->getCenterOfMassPosition());
+                // The normal points from B to A: A approaching B moves against it.
+                fastest =
+                    std::max(fastest, static_cast<double>(-(va - vb).dot(pt.m_normalWorldOnB)));
+            }
+            approach_speed_[m] = fastest;
+        }
+    }
+
     btCollisionDispatcher& dispatcher_;
     double max_speed_;
     SpeedCheck last_check_;
+    std::unordered_map<const btPersistentManifold*, double> approach_speed_;
+    bool measure_approach_ = false;
 };
 
 struct World::Entry {
@@ -242,6 +282,10 @@ void World::remove_hand_body(btRigidBody* body) {
     --hand_bodies_;
 }
 
+void World::set_measure_approach(bool measure) {
+    world_->set_measure_approach(measure);
+}
+
 bool World::needs_step() const {
     if (hand_bodies_ > 0) return true;
     for (const auto& [handle, e] : colliders_) {
@@ -315,12 +359,24 @@ void World::for_each_hand_contact(const std::function<void(const ContactPoint&)>
         const btPersistentManifold* m = dispatcher_->getManifoldByIndexInternal(i);
         const btCollisionObject* a = m->getBody0();
         const btCollisionObject* b = m->getBody1();
-        if (role_of(a) == BodyRole::Collider) std::swap(a, b);
+        const bool swapped = role_of(a) == BodyRole::Collider;
+        if (swapped) std::swap(a, b);
         if (role_of(a) != BodyRole::Hand || role_of(b) != BodyRole::Collider) continue;
+        const double approach = world_->approach_speed(m);
         for (int p = 0; p < m->getNumContacts(); ++p) {
             const btManifoldPoint& pt = m->getContactPoint(p);
+            // Bullet's normal points from its second body toward its first.
+            const Vec3 normal = from_bt(pt.m_normalWorldOnB) * (swapped ? -1.0 : 1.0);
+            const Vec3 point =
+                from_bt(swapped ? pt.getPositionWorldOnA() : pt.getPositionWorldOnB());
+            // The solver pushes Bullet's first body along the normal and friction directions.
+            const btVector3 on_first = pt.m_normalWorldOnB * pt.getAppliedImpulse() +
+                                       pt.m_lateralFrictionDir1 * pt.m_appliedImpulseLateral1 +
+                                       pt.m_lateralFrictionDir2 * pt.m_appliedImpulseLateral2;
+            const Vec3 impulse_on_collider = from_bt(on_first) * (swapped ? 1.0 : -1.0);
             visit({a, static_cast<ColliderHandle>(b->getUserIndex2()), pt.getDistance(),
-                   pt.getAppliedImpulse(), !b->isStaticOrKinematicObject()});
+                   pt.getAppliedImpulse(), !b->isStaticOrKinematicObject(), point, normal,
+                   impulse_on_collider, from_bt(b->getWorldTransform().getOrigin()), approach});
         }
     }
 }

@@ -5,8 +5,8 @@
 #include <memory>
 #include <optional>
 
-#include "collider_shape.h"
 #include "collider.h"
+#include "collider_shape.h"
 #include "simulation.h"
 #include "speed_limit.h"
 
@@ -78,8 +78,17 @@ class World {
         ColliderHandle collider;
         double distance;  // < 0: penetrating
         double impulse;
-        bool collider_dynamic;  // the hand can move it (static and kinematic ones it cannot)
+        bool collider_dynamic;     // the hand can move it (static and kinematic ones it cannot)
+        Vec3 point;                // on the collider's surface, world frame
+        Vec3 normal;               // from the collider toward the hand part
+        Vec3 impulse_on_collider;  // normal and friction, N·s
+        Vec3 collider_centre;      // its centre of mass
+        // How fast the pair approached along the normal at its contact points before the
+        // last substep's solver, m/s (0 when separating).
+        double approach_speed;
     };
+    // Whether ContactPoint::approach_speed is measured (otherwise 0).
+    void set_measure_approach(bool measure);
     // Hand-versus-collider contact points, re-measured at the current poses.
     void for_each_hand_contact(const std::function<void(const ContactPoint&)>& visit) const;
 

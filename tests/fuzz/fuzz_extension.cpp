@@ -3,7 +3,8 @@
 // every input (creating them per input would leave little time for the calls). Each input
 // decodes into a sequence of extension calls: colliders created with any shape, motion,
 // size, pose and mass (NaN, Inf, huge and zero included), moved, teleported, located and
-// destroyed through live, stale and made-up handles; hand drives set; hands located. Every
+// destroyed through live, stale and made-up handles, their impulses read; hand drives set;
+// hands located; contact reporting set and contact events read. Every
 // answer must be a result the extension documents, and all a successful locate returns
 // must be finite. Each input starts from the default drive and destroys what it created,
 // so that a crashing input replays on its own; only the simulation's clock and hands carry
@@ -188,6 +189,10 @@ class Harness {
           locate_colliders_(app_.function<PFN_xrLocatePhysicalCollidersPHYSHAND>(
               "xrLocatePhysicalCollidersPHYSHAND")),
           set_drive_(app_.function<PFN_xrSetHandDrivePHYSHAND>("xrSetHandDrivePHYSHAND")),
+          set_reporting_(app_.function<PFN_xrSetPhysicalContactReportingPHYSHAND>(
+              "xrSetPhysicalContactReportingPHYSHAND")),
+          get_events_(app_.function<PFN_xrGetPhysicalContactEventsPHYSHAND>(
+              "xrGetPhysicalContactEventsPHYSHAND")),
           locate_hand_(app_.function<PFN_xrLocateHandJointsEXT>("xrLocateHandJointsEXT")) {
         const XrFrameState frame = app_.frame();
         now_ = frame.predictedDisplayTime;
@@ -197,7 +202,7 @@ class Harness {
     void run(Input& in) {
         reset_drive();
         for (int call = 0; call < kMaxCallsPerInput && !in.done(); ++call) {
-            switch (in.byte() % 7) {
+            switch (in.byte() % 9) {
                 case 0:
                     create(in);
                     break;
@@ -215,6 +220,12 @@ class Harness {
                     break;
                 case 5:
                     set_drive(in);
+                    break;
+                case 6:
+                    set_reporting(in);
+                    break;
+                case 7:
+                    get_events(in);
                     break;
                 default:
                     now_ += period_;
@@ -391,6 +402,14 @@ class Harness {
         locations.locations = flaw == 1 ? nullptr : out.data();
         if (flaw == 0) info.type = XR_TYPE_PHYSICAL_COLLIDER_LOCATIONS_PHYSHAND;
         if (flaw == 3) locations.type = XR_TYPE_PHYSICAL_COLLIDERS_LOCATE_INFO_PHYSHAND;
+        // Bit 0: the impulses chained; bit 1: one too many of them; bit 2: no array.
+        const std::uint8_t chain = in.byte();
+        std::vector<XrPhysicalColliderImpulsePHYSHAND> impulse_array(colliders.size() + 1);
+        auto impulses =
+            xr<XrPhysicalColliderImpulsesPHYSHAND>(XR_TYPE_PHYSICAL_COLLIDER_IMPULSES_PHYSHAND);
+        impulses.impulseCount = info.colliderCount + (chain & 2 ? 1 : 0);
+        impulses.impulses = chain & 4 ? nullptr : impulse_array.data();
+        if (chain & 1) locations.next = &impulses;
         const XrResult result = locate_colliders_(session(in), &info, &locations);
         expect_documented(result, "xrLocatePhysicalCollidersPHYSHAND");
         if (result != XR_SUCCESS) return;
@@ -398,6 +417,50 @@ class Harness {
             if (!finite(location.pose) || !finite(location.linearVelocity) ||
                 !finite(location.angularVelocity)) {
                 fail("xrLocatePhysicalCollidersPHYSHAND", "non-finite location", result);
+            }
+        }
+        for (const XrPhysicalColliderImpulsePHYSHAND& impulse : impulse_array) {
+            if (!finite(impulse.linearImpulse) || !finite(impulse.angularImpulse)) {
+                fail("xrLocatePhysicalCollidersPHYSHAND", "non-finite impulse", result);
+            }
+        }
+    }
+
+    void set_reporting(Input& in) {
+        const int flaw = in.flaw(2);
+        auto info = xr<XrPhysicalContactReportingInfoPHYSHAND>(
+            XR_TYPE_PHYSICAL_CONTACT_REPORTING_INFO_PHYSHAND);
+        info.persistEvents = in.byte() % 2;
+        // Mostly small buffers, some over the limit of 65536.
+        info.eventCapacity = in.byte() < kFirstFlaw ? in.byte() : in.raw<std::uint32_t>();
+        if (flaw == 0) info.type = XR_TYPE_HAND_DRIVE_INFO_PHYSHAND;
+        expect_documented(set_reporting_(session(in), flaw == 1 ? nullptr : &info),
+                          "xrSetPhysicalContactReportingPHYSHAND");
+    }
+
+    void get_events(Input& in) {
+        const int flaw = in.flaw(4);
+        auto info = xr<XrPhysicalContactEventsGetInfoPHYSHAND>(
+            XR_TYPE_PHYSICAL_CONTACT_EVENTS_GET_INFO_PHYSHAND);
+        info.baseSpace = space(in);
+        info.time = any_time(in);
+        std::vector<XrPhysicalContactEventPHYSHAND> event_array(in.byte() % 64);
+        auto events = xr<XrPhysicalContactEventsPHYSHAND>(XR_TYPE_PHYSICAL_CONTACT_EVENTS_PHYSHAND);
+        events.eventCapacityInput = static_cast<std::uint32_t>(event_array.size());
+        events.events = flaw == 2 ? nullptr : event_array.data();
+        if (flaw == 0) info.type = XR_TYPE_PHYSICAL_CONTACT_EVENTS_PHYSHAND;
+        if (flaw == 3) events.type = XR_TYPE_PHYSICAL_CONTACT_EVENTS_GET_INFO_PHYSHAND;
+        const XrResult result = get_events_(session(in), flaw == 1 ? nullptr : &info, &events);
+        expect_documented(result, "xrGetPhysicalContactEventsPHYSHAND");
+        if (result != XR_SUCCESS || events.eventCapacityInput == 0) return;
+        if (events.eventCountOutput > events.eventCapacityInput) {
+            fail("xrGetPhysicalContactEventsPHYSHAND", "more events than room", result);
+        }
+        for (std::uint32_t i = 0; i < events.eventCountOutput; ++i) {
+            const XrPhysicalContactEventPHYSHAND& e = event_array[i];
+            if (!finite(e.point) || !finite(e.normal) || !finite(e.linearImpulse) ||
+                !finite(e.impulse) || !finite(e.approachSpeed)) {
+                fail("xrGetPhysicalContactEventsPHYSHAND", "non-finite event", result);
             }
         }
     }
@@ -497,6 +560,8 @@ class Harness {
     const PFN_xrSetPhysicalColliderPosePHYSHAND set_pose_;
     const PFN_xrLocatePhysicalCollidersPHYSHAND locate_colliders_;
     const PFN_xrSetHandDrivePHYSHAND set_drive_;
+    const PFN_xrSetPhysicalContactReportingPHYSHAND set_reporting_;
+    const PFN_xrGetPhysicalContactEventsPHYSHAND get_events_;
     const PFN_xrLocateHandJointsEXT locate_hand_;
     XrTime now_ = 0;  // the latest time the simulation was advanced to, or the first frame's
     XrTime period_ = 0;

@@ -401,6 +401,8 @@ XrResult LayerTest::create_instance(const std::vector<const char*>& extensions,
         load(api_.set_pose, "xrSetPhysicalColliderPosePHYSHAND");
         load(api_.locate_colliders, "xrLocatePhysicalCollidersPHYSHAND");
         load(api_.set_drive, "xrSetHandDrivePHYSHAND");
+        load(api_.set_contact_reporting, "xrSetPhysicalContactReportingPHYSHAND");
+        load(api_.get_contact_events, "xrGetPhysicalContactEventsPHYSHAND");
     }
     return result;
 }

@@ -92,6 +92,8 @@ struct PhysicalHandsApi {
     PFN_xrSetPhysicalColliderPosePHYSHAND set_pose = nullptr;
     PFN_xrLocatePhysicalCollidersPHYSHAND locate_colliders = nullptr;
     PFN_xrSetHandDrivePHYSHAND set_drive = nullptr;
+    PFN_xrSetPhysicalContactReportingPHYSHAND set_contact_reporting = nullptr;
+    PFN_xrGetPhysicalContactEventsPHYSHAND get_contact_events = nullptr;
 };
 
 // The output of xrLocateHandJointsEXT with velocities and the physical state chained;

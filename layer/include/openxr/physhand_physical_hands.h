@@ -23,6 +23,10 @@
 **   1010041004  XR_TYPE_HAND_JOINTS_PHYSICAL_STATE_PHYSHAND
 **   1010041005  XR_TYPE_HAND_DRIVE_INFO_PHYSHAND
 **   1010041006  XR_TYPE_HAND_COLLISION_SHAPES_PHYSHAND (spec version 2)
+**   1010041007  XR_TYPE_PHYSICAL_CONTACT_REPORTING_INFO_PHYSHAND (spec version 3)
+**   1010041008  XR_TYPE_PHYSICAL_CONTACT_EVENTS_GET_INFO_PHYSHAND (spec version 3)
+**   1010041009  XR_TYPE_PHYSICAL_CONTACT_EVENTS_PHYSHAND (spec version 3)
+**   1010041010  XR_TYPE_PHYSICAL_COLLIDER_IMPULSES_PHYSHAND (spec version 3)
 **   1010041000  XR_OBJECT_TYPE_PHYSICAL_COLLIDER_PHYSHAND
 **
 ** Frames and time. The layer simulates in the session's STAGE reference space (LOCAL if
@@ -61,7 +65,7 @@ extern "C" {
 
 #define XR_PHYSHAND_physical_hands 1
 /* Version 2 adds XrHandCollisionShapesPHYSHAND; version 1's behaviour is unchanged. */
-#define XR_PHYSHAND_physical_hands_SPEC_VERSION 2
+#define XR_PHYSHAND_physical_hands_SPEC_VERSION 3
 #define XR_PHYSHAND_PHYSICAL_HANDS_EXTENSION_NAME "XR_PHYSHAND_physical_hands"
 
 XR_DEFINE_HANDLE(XrPhysicalColliderPHYSHAND)
@@ -73,6 +77,10 @@ XR_DEFINE_HANDLE(XrPhysicalColliderPHYSHAND)
 #define XR_TYPE_HAND_JOINTS_PHYSICAL_STATE_PHYSHAND ((XrStructureType)1010041004)
 #define XR_TYPE_HAND_DRIVE_INFO_PHYSHAND ((XrStructureType)1010041005)
 #define XR_TYPE_HAND_COLLISION_SHAPES_PHYSHAND ((XrStructureType)1010041006)
+#define XR_TYPE_PHYSICAL_CONTACT_REPORTING_INFO_PHYSHAND ((XrStructureType)1010041007)
+#define XR_TYPE_PHYSICAL_CONTACT_EVENTS_GET_INFO_PHYSHAND ((XrStructureType)1010041008)
+#define XR_TYPE_PHYSICAL_CONTACT_EVENTS_PHYSHAND ((XrStructureType)1010041009)
+#define XR_TYPE_PHYSICAL_COLLIDER_IMPULSES_PHYSHAND ((XrStructureType)1010041010)
 #define XR_OBJECT_TYPE_PHYSICAL_COLLIDER_PHYSHAND ((XrObjectType)1010041000)
 
 /* Shapes, in the collider's local frame (the frame of its pose). Zero is no shape, so a
@@ -197,6 +205,26 @@ typedef struct XrPhysicalColliderLocationsPHYSHAND {
     XrPhysicalColliderLocationPHYSHAND* locations;
 } XrPhysicalColliderLocationsPHYSHAND;
 
+/* Since spec version 3. Chained to XrPhysicalColliderLocationsPHYSHAND::next: for each
+** located collider, the impulse both hands gave it since the app last read this collider's
+** impulse (the first read starts the count and gives 0), and its moment about the
+** collider's centre of mass, in baseSpace's axes. Each physics frame's impulse is read
+** once, however often the app locates: apply what you read. Static and kinematic colliders
+** get theirs too, though the layer does not move them, so that an app can keep an object
+** in its own engine (the coupling recipe below). impulseCount must equal locationCount.
+** While baseSpace cannot be located the impulses read 0 and are kept for a later read. */
+typedef struct XrPhysicalColliderImpulsePHYSHAND {
+    XrVector3f linearImpulse;  /* N*s */
+    XrVector3f angularImpulse; /* N*m*s */
+} XrPhysicalColliderImpulsePHYSHAND;
+
+typedef struct XrPhysicalColliderImpulsesPHYSHAND {
+    XrStructureType type; /* XR_TYPE_PHYSICAL_COLLIDER_IMPULSES_PHYSHAND */
+    void* XR_MAY_ALIAS next;
+    uint32_t impulseCount;
+    XrPhysicalColliderImpulsePHYSHAND* impulses;
+} XrPhysicalColliderImpulsesPHYSHAND;
+
 /* Chained to XrHandJointLocationsEXT::next. Each array has jointCount (= 26) elements and
 ** may be NULL when the app does not want it. */
 typedef struct XrHandJointsPhysicalStatePHYSHAND {
@@ -260,6 +288,85 @@ typedef struct XrHandDriveInfoPHYSHAND {
     uint32_t substeps;
 } XrHandDriveInfoPHYSHAND;
 
+/* Since spec version 3: contact events, for sound, haptics and apps that keep their own
+** physics. Between the hands' bodies and colliders only (colliders touching each other are
+** not reported). A pair is one body of one hand (a finger bone, the palm, or a joint's
+** sphere) and one collider; it begins in the first physics frame (1/90 s) in which they
+** touch, persists while they do, and ends in the first frame in which they no longer do
+** (also when the hand stops being simulated or the collider is destroyed). */
+typedef enum XrPhysicalContactEventKindPHYSHAND {
+    XR_PHYSICAL_CONTACT_EVENT_KIND_BEGIN_PHYSHAND = 1,
+    XR_PHYSICAL_CONTACT_EVENT_KIND_PERSIST_PHYSHAND = 2,
+    XR_PHYSICAL_CONTACT_EVENT_KIND_END_PHYSHAND = 3,
+    XR_PHYSICAL_CONTACT_EVENT_KIND_MAX_ENUM_PHYSHAND = 0x7FFFFFFF
+} XrPhysicalContactEventKindPHYSHAND;
+
+/* Turns recording on for a session (nothing is recorded before this call or the first
+** xrGetPhysicalContactEventsPHYSHAND, which turns it on with the defaults), or changes it.
+** eventCapacity: how many events are kept until the app reads them, 1 to 65536; 0 means
+** 1024. Events that come to a full buffer are dropped and counted (lostEventCount); a
+** smaller capacity than the events waiting drops the newest. persistEvents: also one
+** PERSIST event per pair and physics frame (90 a second for each touching body: ask for
+** them only to sum impulses). */
+typedef struct XrPhysicalContactReportingInfoPHYSHAND {
+    XrStructureType type; /* XR_TYPE_PHYSICAL_CONTACT_REPORTING_INFO_PHYSHAND */
+    const void* XR_MAY_ALIAS next;
+    XrBool32 persistEvents;
+    uint32_t eventCapacity;
+} XrPhysicalContactReportingInfoPHYSHAND;
+
+typedef struct XrPhysicalContactEventPHYSHAND {
+    XrPhysicalContactEventKindPHYSHAND kind;
+    XrHandEXT hand;
+    /* The first joint the touching body carries: a finger bone's base joint (the index
+    ** finger's proximal bone is XR_HAND_JOINT_INDEX_PROXIMAL_EXT, its last bone, which
+    ** carries the tip, XR_HAND_JOINT_INDEX_DISTAL_EXT), the palm for the default drive's
+    ** palm box, the joint itself for the sphere drives. */
+    XrHandJointEXT joint;
+    /* XR_NULL_HANDLE for a collider of the layer's config file, or one destroyed since. */
+    XrPhysicalColliderPHYSHAND collider;
+    XrTime time; /* the end of the physics frame */
+    /* In baseSpace: where they touched deepest in that frame (an END: where they last
+    ** touched), and the surface normal there, from the collider toward the hand. */
+    XrVector3f point;
+    XrVector3f normal;
+    /* The normal impulse between them over the frame, N*s (0 for END). */
+    float impulse;
+    /* The impulse the collider took from this body over the frame, normal and friction,
+    ** N*s, in baseSpace's axes (0 for END): summed over a collider's BEGIN and PERSIST
+    ** events, what the hands did to its momentum. Also for static and kinematic
+    ** colliders, which the layer does not move: an app simulating the object itself
+    ** applies it in its own engine. */
+    XrVector3f linearImpulse;
+    /* BEGIN: how fast they approached along the normal when they met, m/s. 0 otherwise. */
+    float approachSpeed;
+} XrPhysicalContactEventPHYSHAND;
+
+/* Positions and directions are given in baseSpace located at `time`; a baseSpace that
+** cannot be located then fails with XR_ERROR_POSE_INVALID and reads nothing. */
+typedef struct XrPhysicalContactEventsGetInfoPHYSHAND {
+    XrStructureType type; /* XR_TYPE_PHYSICAL_CONTACT_EVENTS_GET_INFO_PHYSHAND */
+    const void* XR_MAY_ALIAS next;
+    XrSpace baseSpace;
+    XrTime time;
+} XrPhysicalContactEventsGetInfoPHYSHAND;
+
+/* The events since the app last read them, oldest first, from the physics frames simulated
+** so far (locating hand joints or colliders advances the simulation; this call does not).
+** Two-call idiom: eventCapacityInput 0 asks for eventCountOutput and reads nothing; a
+** capacity under the count fails with XR_ERROR_SIZE_INSUFFICIENT (eventCountOutput set);
+** otherwise the events are copied and removed from the buffer. lostEventCount: events
+** dropped because the buffer was full since the last successful read (set by every call;
+** reset by a read). */
+typedef struct XrPhysicalContactEventsPHYSHAND {
+    XrStructureType type; /* XR_TYPE_PHYSICAL_CONTACT_EVENTS_PHYSHAND */
+    void* XR_MAY_ALIAS next;
+    uint32_t eventCapacityInput;
+    uint32_t eventCountOutput;
+    XrPhysicalContactEventPHYSHAND* events;
+    uint32_t lostEventCount;
+} XrPhysicalContactEventsPHYSHAND;
+
 typedef XrResult(XRAPI_PTR* PFN_xrCreatePhysicalColliderPHYSHAND)(
     XrSession session, const XrPhysicalColliderCreateInfoPHYSHAND* createInfo,
     XrPhysicalColliderPHYSHAND* collider);
@@ -272,6 +379,11 @@ typedef XrResult(XRAPI_PTR* PFN_xrLocatePhysicalCollidersPHYSHAND)(
     XrPhysicalColliderLocationsPHYSHAND* locations);
 typedef XrResult(XRAPI_PTR* PFN_xrSetHandDrivePHYSHAND)(XrSession session,
                                                         const XrHandDriveInfoPHYSHAND* driveInfo);
+typedef XrResult(XRAPI_PTR* PFN_xrSetPhysicalContactReportingPHYSHAND)(
+    XrSession session, const XrPhysicalContactReportingInfoPHYSHAND* reportingInfo);
+typedef XrResult(XRAPI_PTR* PFN_xrGetPhysicalContactEventsPHYSHAND)(
+    XrSession session, const XrPhysicalContactEventsGetInfoPHYSHAND* getInfo,
+    XrPhysicalContactEventsPHYSHAND* events);
 
 #ifndef XR_NO_PROTOTYPES
 #ifdef XR_EXTENSION_PROTOTYPES
@@ -287,6 +399,11 @@ XRAPI_ATTR XrResult XRAPI_CALL xrLocatePhysicalCollidersPHYSHAND(
     XrPhysicalColliderLocationsPHYSHAND* locations);
 XRAPI_ATTR XrResult XRAPI_CALL xrSetHandDrivePHYSHAND(XrSession session,
                                                       const XrHandDriveInfoPHYSHAND* driveInfo);
+XRAPI_ATTR XrResult XRAPI_CALL xrSetPhysicalContactReportingPHYSHAND(
+    XrSession session, const XrPhysicalContactReportingInfoPHYSHAND* reportingInfo);
+XRAPI_ATTR XrResult XRAPI_CALL xrGetPhysicalContactEventsPHYSHAND(
+    XrSession session, const XrPhysicalContactEventsGetInfoPHYSHAND* getInfo,
+    XrPhysicalContactEventsPHYSHAND* events);
 #endif /* XR_EXTENSION_PROTOTYPES */
 #endif /* !XR_NO_PROTOTYPES */
 
