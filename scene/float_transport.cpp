@@ -15,6 +15,10 @@ Vec3 f(const Vec3& v) {
 
 }  // namespace
 
+Vec3 round_to_float(const Vec3& v) {
+    return f(v);
+}
+
 Pose round_to_float(const Pose& pose) {
     return {f(pose.position), pose.orientation.cast<float>().cast<double>()};
 }

@@ -98,6 +98,9 @@ struct Scene {
     std::array<std::optional<HandScript>, 2> hands;  // indexed by HandSide
     Tracking tracking;
     std::vector<Predicate> success;
+    // Ids of dynamic colliders the app keeps in an engine of its own (AppEngine), coupled to
+    // the hands through their impulses.
+    std::vector<std::string> app_engine;
 
     const std::optional<HandScript>& hand(HandSide side) const {
         return hands[static_cast<int>(side)];

@@ -39,9 +39,9 @@ constexpr std::array<Named<HandSide>, 2> kSides = {{
     {"right", HandSide::Right},
 }};
 
-constexpr std::string_view kSceneKeys[] = {"format",     "name",     "description",
-                                           "duration_s", "gravity",  "colliders",
-                                           "hands",      "tracking", "success"};
+constexpr std::string_view kSceneKeys[] = {"format",  "name",      "description", "duration_s",
+                                           "gravity", "colliders", "hands",       "tracking",
+                                           "success", "app_engine"};
 constexpr std::string_view kHandsKeys[] = {"left", "right"};
 constexpr std::string_view kHandKeys[] = {"keyframes", "interpolation", "scale", "track"};
 constexpr std::string_view kKeyframeKeys[] = {"t", "wrist", "curl", "spread"};
@@ -353,6 +353,20 @@ Scene read_scene(const Node& root, const fs::path& base_dir) {
     scene.gravity = obj.get_or("gravity", &Node::vec3, scene.gravity);
     for (const Node& item : obj.at("colliders").array()) {
         scene.colliders.push_back(read_collider(item, scene.colliders));
+    }
+    if (const auto engine = obj.find("app_engine")) {
+        for (const Node& item : engine->array()) {
+            const std::string id = item.non_empty_string();
+            const Collider* c = scene.find_collider(id);
+            if (c == nullptr || c->motion != Motion::Dynamic) {
+                item.fail("expected the id of a dynamic collider, got " + in_quotes(id));
+            }
+            if (std::find(scene.app_engine.begin(), scene.app_engine.end(), id) !=
+                scene.app_engine.end()) {
+                item.fail("duplicate id " + in_quotes(id));
+            }
+            scene.app_engine.push_back(id);
+        }
     }
     if (const auto hands_node = obj.find("hands")) {
         const Object hands(*hands_node);

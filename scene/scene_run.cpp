@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "app_engine.h"
 #include "float_transport.h"
 #include "frame_clock.h"
 #include "tracking.h"
@@ -45,9 +46,14 @@ RunResult run_scene(const Scene& input, const SimulationSettings& settings,
     if (seed) scene.tracking.seed = *seed;
     Simulation sim(settings, scene.gravity);
 
+    AppEngine engine(scene);
     std::vector<ColliderHandle> handles;
-    for (const Collider& c : scene.colliders)
-        handles.push_back(sim.add_collider(round_to_float(c)));
+    for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
+        handles.push_back(sim.add_collider(round_to_float(as_declared(scene, i))));
+        if (engine.simulates(i)) sim.take_hand_impulse(handles[i]);  // counted from now on
+    }
+    // The app's objects are judged where the hands' simulation has them (each frame, where
+    // the app's engine put them), as an app reading them back through the layer sees them.
     auto handle_of = [&](const std::string& id) -> std::optional<ColliderHandle> {
         for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
             if (scene.colliders[i].id == id) return handles[i];
@@ -64,13 +70,18 @@ RunResult run_scene(const Scene& input, const SimulationSettings& settings,
     RunMetrics metrics;
     const std::int64_t period_ns = frame_period_ns(display.rate_hz);
     const auto jitter_ns = std::llround(display.jitter_ms * 1e6);
+    double previous_t = 0.0;
     for (int f = 1;; ++f) {
         const double t =
             clock_seconds(f * period_ns + frame_jitter_ns(f, jitter_ns, display.jitter_seed));
+        engine.step(t - previous_t);
+        previous_t = t;
         for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
             if (!scene.colliders[i].path.empty()) {
                 sim.set_kinematic_target(handles[i], round_to_float(scene.colliders[i].pose_at(t)),
                                          t);
+            } else if (engine.simulates(i)) {
+                sim.set_kinematic_target(handles[i], round_to_float(engine.state(i).pose), t);
             }
         }
         // As a runtime reports them: in floats, at any time asked for.
@@ -84,6 +95,12 @@ RunResult run_scene(const Scene& input, const SimulationSettings& settings,
         const double step_us =
             std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start)
                 .count();
+
+        for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
+            if (!engine.simulates(i)) continue;
+            const HandImpulse given = sim.take_hand_impulse(handles[i]);
+            engine.apply(i, round_to_float(given.linear), round_to_float(given.angular));
+        }
 
         std::array<std::optional<Pose>, 2> wrists;
         for (HandSide side : kHandSides) {

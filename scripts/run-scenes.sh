@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # The main job: installs what is missing, builds, and plays every sample scene through
 # loader -> layer -> simulated runtime (physhand-sample), one result line each (pass --json
-# for the full result objects). The four paper scenes (throw, sphere, displacement, stack)
-# and press_table are rendered (Vulkan; lavapipe when no other device is set) with capture: their frames go
-# to out/SCENE/ and one contact sheet each to out/SCENE_contact_sheet.png. The others play
-# headless. PHYSICS_ONLY=1 runs physhand-scene instead; VIEW_SIZE sets the rendered views'
+# for the full result objects), with a line for each touch that begins. The four paper
+# scenes (throw, sphere, displacement, stack), press_table and app_push are rendered (Vulkan;
+# lavapipe when no other device is set) with capture: their frames go to out/SCENE/ and one
+# contact sheet each to out/SCENE_contact_sheet.png. The others play headless. PHYSICS_ONLY=1 runs physhand-scene instead; VIEW_SIZE sets the rendered views'
 # width in pixels (default 320). The simulated head sits at the table, close enough for 4 cm
 # cubes to read on the contact sheets (for sphere: above the table's far end, to see into the
 # basket on the floor beyond it); PHYSHAND_SIM_HEAD_POSITION and PHYSHAND_SIM_HEAD_PITCH_DEG
@@ -22,7 +22,7 @@ for scene in "$root"/samples/scenes/*.json; do
     name=$(basename "$scene" .json)
     if [ "${PHYSICS_ONLY:-0}" = 1 ]; then
         "$build/samples/physhand-scene" "$scene" "$@"
-    elif [[ " throw sphere displacement stack press_table " == *" $name "* ]]; then
+    elif [[ " throw sphere displacement stack press_table app_push " == *" $name "* ]]; then
         rm -rf "${out:?}/$name"
         mkdir -p "$out/$name"
         if [ "$name" = sphere ]; then head=(0.1,1.45,-0.45 -64); else head=(0.15,1.1,0.05 -40); fi

@@ -34,7 +34,9 @@ constexpr const char* kUsage =
     "  --no-feedback   touched objects stay opaque\n"
     "  --no-hands      draw no hands of the app's own (the layer's overlay still may)\n"
     "  --view-size N   each view N pixels wide (default: the runtime's recommendation)\n"
-    "  --json          print each result as one JSON object (default: one summary line)\n";
+    "  --json          print each result as one JSON object (default: one summary line)\n"
+    "A line for each touch that begins (hand part, object, impact speed) goes to stdout, or\n"
+    "to stderr with --json.\n";
 
 int usage_error(const std::string& message) {
     std::cerr << "physhand-sample: " << message << "\n" << kUsage;
@@ -131,6 +133,7 @@ int main(int argc, char** argv) {
         return usage_error(std::string("--drive: ") + e.what());
     }
     if (scene_paths.empty()) return usage_error("no scene file");
+    if (json) options.touch_lines = &std::cerr;
     if (options.live && !options.rendered) return usage_error("--live needs the rendered mode");
 
     try {

@@ -1,5 +1,6 @@
 #include "scene_colliders.h"
 
+#include <algorithm>
 #include <cstdint>
 
 #include "xr_check.h"
@@ -90,8 +91,14 @@ ColliderFunctions ColliderFunctions::load(XrInstance instance) {
 
 SceneColliders::SceneColliders(const Scene& scene, const ColliderFunctions& functions,
                                XrInstance instance, XrSession session, XrSpace stage, XrTime time)
-    : scene_(scene), functions_(functions), instance_(instance), session_(session), stage_(stage) {
-    for (const Collider& c : scene.colliders) {
+    : scene_(scene),
+      functions_(functions),
+      instance_(instance),
+      session_(session),
+      stage_(stage),
+      engine_(scene) {
+    for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
+        const Collider c = as_declared(scene, i);
         std::vector<XrVector3f> vertices;
         std::vector<std::uint32_t> indices;
         const XrPhysicalColliderCreateInfoPHYSHAND info =
@@ -103,17 +110,20 @@ SceneColliders::SceneColliders(const Scene& scene, const ColliderFunctions& func
         handles_.push_back(collider);
     }
     locations_.resize(handles_.size());
+    impulses_.resize(handles_.size());
 }
 
-void SceneColliders::follow_paths(XrTime time, double t) const {
+void SceneColliders::follow(XrTime time, double t) {
+    engine_.step(t - engine_t_);
+    engine_t_ = t;
     for (std::size_t i = 0; i < scene_.colliders.size(); ++i) {
         const Collider& c = scene_.colliders[i];
-        if (c.path.empty()) continue;
+        if (c.path.empty() && !engine_.simulates(i)) continue;
         XrPhysicalColliderPoseInfoPHYSHAND info{};
         info.type = XR_TYPE_PHYSICAL_COLLIDER_POSE_INFO_PHYSHAND;
         info.space = stage_;
         info.time = time;
-        info.pose = to_xr(c.pose_at(t));
+        info.pose = to_xr(engine_.simulates(i) ? engine_.state(i).pose : c.pose_at(t));
         info.teleport = XR_FALSE;
         xr_check(instance_, functions_.set_pose(handles_[i], &info),
                  "xrSetPhysicalColliderPosePHYSHAND(" + c.id + ")");
@@ -127,13 +137,29 @@ const std::vector<XrPhysicalColliderLocationPHYSHAND>& SceneColliders::locate(Xr
     info.time = time;
     info.colliderCount = static_cast<std::uint32_t>(handles_.size());
     info.colliders = handles_.data();
+    XrPhysicalColliderImpulsesPHYSHAND impulses{};
+    impulses.type = XR_TYPE_PHYSICAL_COLLIDER_IMPULSES_PHYSHAND;
+    impulses.impulseCount = static_cast<std::uint32_t>(impulses_.size());
+    impulses.impulses = impulses_.data();
     XrPhysicalColliderLocationsPHYSHAND locations{};
     locations.type = XR_TYPE_PHYSICAL_COLLIDER_LOCATIONS_PHYSHAND;
+    // Only a scene with objects of the app's own asks for impulses.
+    if (!scene_.app_engine.empty()) locations.next = &impulses;
     locations.locationCount = static_cast<std::uint32_t>(locations_.size());
     locations.locations = locations_.data();
     xr_check(instance_, functions_.locate(session_, &info, &locations),
              "xrLocatePhysicalCollidersPHYSHAND");
+    for (std::size_t i = 0; i < scene_.colliders.size(); ++i) {
+        if (!engine_.simulates(i)) continue;
+        engine_.apply(i, to_vec3(impulses_[i].linearImpulse), to_vec3(impulses_[i].angularImpulse));
+    }
     return locations_;
+}
+
+std::optional<std::size_t> SceneColliders::index_of(XrPhysicalColliderPHYSHAND collider) const {
+    const auto it = std::find(handles_.begin(), handles_.end(), collider);
+    if (it == handles_.end()) return std::nullopt;
+    return static_cast<std::size_t>(it - handles_.begin());
 }
 
 }  // namespace physhand::sample

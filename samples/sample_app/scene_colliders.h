@@ -4,8 +4,10 @@
 #include <openxr/physhand_physical_hands.h>
 
 #include <array>
+#include <optional>
 #include <vector>
 
+#include "app_engine.h"
 #include "scene.h"
 #include "xr_handle.h"
 
@@ -33,7 +35,9 @@ inline bool touched(const XrPhysicalColliderLocationPHYSHAND& location) {
     return by[0] || by[1];
 }
 
-// A scene's colliders declared to the layer, in scene order, in the STAGE space.
+// A scene's colliders declared to the layer, in scene order, in the STAGE space. Those the
+// scene's app_engine names live in the sample's own engine (AppEngine) and are declared
+// kinematic: the coupling recipe of XR_PHYSHAND_physical_hands, as an app would follow it.
 class SceneColliders {
   public:
     // Declares every collider at its scene pose at `time`.
@@ -41,12 +45,16 @@ class SceneColliders {
                    XrSession session, XrSpace stage, XrTime time);
 
     // Moves each kinematic collider that has a path to where the path is at scene time `t`
-    // (`time` is the same instant as an XrTime).
-    void follow_paths(XrTime time, double t) const;
-    // Every collider, in scene order, at `time`.
+    // (`time` is the same instant as an XrTime), and each of the app's objects to where its
+    // engine has it then.
+    void follow(XrTime time, double t);
+    // Every collider, in scene order, at `time`; the hands' impulses on the app's objects go
+    // to its engine.
     const std::vector<XrPhysicalColliderLocationPHYSHAND>& locate(XrTime time);
     // What the latest locate() returned.
     const std::vector<XrPhysicalColliderLocationPHYSHAND>& located() const { return locations_; }
+    // The scene index of a collider the layer names, if it is one of these.
+    std::optional<std::size_t> index_of(XrPhysicalColliderPHYSHAND collider) const;
 
   private:
     const Scene& scene_;
@@ -57,6 +65,9 @@ class SceneColliders {
     std::vector<XrHandle<XrPhysicalColliderPHYSHAND>> owned_;
     std::vector<XrPhysicalColliderPHYSHAND> handles_;  // the same, as the locate call wants them
     std::vector<XrPhysicalColliderLocationPHYSHAND> locations_;
+    AppEngine engine_;
+    double engine_t_ = 0.0;  // the scene time the engine has reached
+    std::vector<XrPhysicalColliderImpulsePHYSHAND> impulses_;
 };
 
 }  // namespace physhand::sample

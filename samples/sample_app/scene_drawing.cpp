@@ -27,6 +27,7 @@ constexpr std::array<Rgb, 6> kDynamic = {{{0.9f, 0.3f, 0.25f},
                                           {0.35f, 0.75f, 0.35f},
                                           {0.7f, 0.4f, 0.85f},
                                           {0.2f, 0.8f, 0.8f}}};
+constexpr float kFlashWhite = 0.8f;       // how far toward white a touched object flashes
 constexpr float kBoneRadiusScale = 0.6f;  // of the smaller joint radius at its ends
 
 Rgb linear(const Rgb& srgb) {
@@ -82,7 +83,8 @@ SceneDrawing::SceneDrawing(const Scene& scene) : scene_(scene) {
 
 std::vector<Draw> SceneDrawing::draws(
     const std::vector<XrPhysicalColliderLocationPHYSHAND>& colliders,
-    const std::array<LocatedHand, 2>& hands, const DrawSettings& drawing) const {
+    const std::array<LocatedHand, 2>& hands, const DrawSettings& drawing,
+    const std::vector<float>& flashes) const {
     std::vector<Draw> out;
     for (std::size_t i = 0; i < colliders.size(); ++i) {
         const Collider& c = scene_.colliders[i];
@@ -102,7 +104,9 @@ std::vector<Draw> SceneDrawing::draws(
             }
             alpha = object_alpha(touched(location), gap, drawing.hover_m);
         }
-        const Rgb& rgb = collider_colors_[i];
+        Rgb rgb = collider_colors_[i];
+        const float flash = i < flashes.size() ? kFlashWhite * flashes[i] : 0.0f;
+        for (float& channel : rgb) channel += (1.0f - channel) * flash;
         out.push_back(
             {collider_meshes_[i], pose_matrix(location.pose), {rgb[0], rgb[1], rgb[2], alpha}});
     }

@@ -36,10 +36,11 @@ class SceneDrawing {
     const MeshSet& meshes() const { return meshes_; }
 
     // Colliders (located in scene order) and both hands as draws; dynamic colliders are
-    // translucent while touched or hovered over (DrawSettings).
+    // translucent while touched or hovered over (DrawSettings), and each collider turns
+    // toward white by its flash (0..1, scene order; missing ones are 0) as a touch begins.
     std::vector<Draw> draws(const std::vector<XrPhysicalColliderLocationPHYSHAND>& colliders,
-                            const std::array<LocatedHand, 2>& hands,
-                            const DrawSettings& drawing) const;
+                            const std::array<LocatedHand, 2>& hands, const DrawSettings& drawing,
+                            const std::vector<float>& flashes = {}) const;
 
   private:
     void add_hand(const LocatedHand& hand, std::vector<Draw>& draws) const;

@@ -51,7 +51,8 @@ void SceneGraphics::show(const Scene& scene) {
 
 const XrCompositionLayerBaseHeader* SceneGraphics::render(
     XrSpace stage, XrTime time, const std::vector<XrPhysicalColliderLocationPHYSHAND>& colliders,
-    const std::array<LocatedHand, 2>& hands, const DrawSettings& drawing) {
+    const std::array<LocatedHand, 2>& hands, const DrawSettings& drawing,
+    const std::vector<float>& flashes) {
     XrViewLocateInfo locate{};
     locate.type = XR_TYPE_VIEW_LOCATE_INFO;
     locate.viewConfigurationType = XR_VIEW_CONFIGURATION_TYPE_PRIMARY_STEREO;
@@ -90,7 +91,7 @@ const XrCompositionLayerBaseHeader* SceneGraphics::render(
         layer_views_.push_back(layer_view);
     }
     const auto start = std::chrono::steady_clock::now();
-    renderer_->render(targets, drawing_->draws(colliders, hands, drawing));
+    renderer_->render(targets, drawing_->draws(colliders, hands, drawing, flashes));
     frame_ms_.push_back(
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
             .count());

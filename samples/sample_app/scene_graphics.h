@@ -31,13 +31,15 @@ class SceneGraphics {
     // The scene to draw from now on.
     void show(const Scene& scene);
 
-    // Draws the shown scene as located at `time` into the next swapchain images. Returns
-    // the layer to submit, or null when the runtime has no valid eye poses to draw from.
-    // The pointer is valid until the next call.
+    // Draws the shown scene as located at `time` into the next swapchain images, each
+    // collider lit by its `flashes` (scene order, 0..1). Returns the layer to submit, or null
+    // when the runtime has no valid eye poses to draw from. The pointer is valid until the
+    // next call.
     const XrCompositionLayerBaseHeader* render(
         XrSpace stage, XrTime time,
         const std::vector<XrPhysicalColliderLocationPHYSHAND>& colliders,
-        const std::array<LocatedHand, 2>& hands, const DrawSettings& drawing);
+        const std::array<LocatedHand, 2>& hands, const DrawSettings& drawing,
+        const std::vector<float>& flashes);
 
     // Where a point of the scene appears in view 0 of the last frame rendered, as a fraction
     // of the image's width and height from its top left; nullopt behind the eye.

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <iostream>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -165,11 +166,14 @@ void XrApp::play_frame(const Scene& scene, XrTime time, double t, RunObserver& o
     if (!colliders_) {
         colliders_.emplace(scene, collider_functions_, instance_.get(), session_.get(),
                            stage_.get(), time);
+        announcer_.emplace(instance_.get(), session_.get(), stage_.get());
     }
     // Before the hands: locating them steps the physics, which must see this frame's targets.
-    colliders_->follow_paths(time, t);
+    colliders_->follow(time, t);
     const double step_us = trackers_->locate(stage_.get(), time, hands_);
     observer.add_frame(t, step_us, hands_, colliders_->locate(time));
+    announcer_->read(time, t, scene, *colliders_, *options_.touch_lines);
+    scene_t_ = t;
 }
 
 bool XrApp::begin_frame(const XrFrameState& state) {
@@ -200,7 +204,8 @@ void XrApp::end_frame(const XrFrameState& state, bool playing, int frame, TouchL
     const XrCompositionLayerBaseHeader* layer = nullptr;
     if (graphics_ && colliders_ && state.shouldRender == XR_TRUE) {
         layer = graphics_->render(stage_.get(), state.predictedDisplayTime, colliders_->located(),
-                                  hands_, options_.drawing);
+                                  hands_, options_.drawing,
+                                  announcer_->flashes(scene_t_, colliders_->located().size()));
         if (playing && layer != nullptr) {
             touches.add_frame(frame, colliders_->located(), [this](const Vec3& point) {
                 return graphics_->view0_position(point);
@@ -223,6 +228,7 @@ ScenePlayed XrApp::play(const Scene& scene) {
     TouchLog touches(scene);
     // The previous scene's colliders go; this one's are declared at its first frame.
     colliders_.reset();
+    announcer_.reset();
     hands_ = {};
     if (graphics_) graphics_->show(scene);
     ScenePlayed played;

@@ -3,9 +3,11 @@
 #include <openxr/openxr.h>
 
 #include <chrono>
+#include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "contact_announcer.h"
 #include "drive.h"
 #include "hand_trackers.h"
 #include "run_observer.h"
@@ -31,6 +33,8 @@ struct AppOptions {
     // Set through the extension for the whole session, and reported with each result.
     DriveSettings drive = default_drive();
     std::optional<std::uint32_t> view_width;  // pixels; the runtime's recommendation if unset
+    // Where the line of each touch that begins goes (stdout, or stderr beside JSON results).
+    std::ostream* touch_lines = &std::cout;
 };
 
 // What playing one scene gave.
@@ -80,9 +84,11 @@ class XrApp {
     std::optional<RuntimeClock> clock_;                   // for sessions without a frame loop
     std::chrono::steady_clock::time_point next_frame_{};  // paces frames without a frame loop
     ColliderFunctions collider_functions_;
-    std::optional<SceneColliders> colliders_;  // declared at a scene's first frame
-    std::array<LocatedHand, 2> hands_;         // as located at the latest frame played
-    bool running_ = false;                     // between xrBeginSession and xrEndSession
+    std::optional<SceneColliders> colliders_;    // declared at a scene's first frame
+    std::optional<ContactAnnouncer> announcer_;  // with the colliders
+    double scene_t_ = 0.0;                       // scene time of the latest frame played
+    std::array<LocatedHand, 2> hands_;           // as located at the latest frame played
+    bool running_ = false;                       // between xrBeginSession and xrEndSession
     bool exit_requested_ = false;
 };
 

@@ -102,6 +102,30 @@ TEST_F(SampleApp, HeadlessPlayerMatchesThePhysicsRunner) {
     EXPECT_EQ(got.at("drive"), "bones");
 }
 
+// A cube the app keeps in its own engine, coupled to the hands through their impulses, ends
+// where the physics runner's coupling puts it: pushed into its region (app_push), thrown out
+// of a pinch (app_lift, the coupling's limit, XR_PHYSHAND_physical_hands.h).
+TEST_F(SampleApp, AppEngineScenesMatchThePhysicsRunner) {
+    for (const char* name : {"app_push", "app_lift"}) {
+        SCOPED_TRACE(name);
+        const auto [expected, got] =
+            run_both(std::string(PHYSHAND_SCENES_DIR) + "/" + name + ".json", "");
+        expect_same_run(expected, got);
+        EXPECT_EQ(got.at("success"), std::string(name) == "app_push");
+    }
+}
+
+// Each touch begins one line, with its hand part, object and speed (beside the summary line;
+// JSON results keep stdout to themselves).
+TEST_F(SampleApp, PrintsALineForEachTouch) {
+    const Output layer =
+        run_command(quoted(PHYSHAND_SAMPLE_EXE) + " --headless " + quoted(kLiftHold));
+    ASSERT_EQ(layer.status, 0) << layer.text;
+    EXPECT_NE(layer.text.find("touch t=2.38 s right thumb_distal -> cube at 0.04 m/s\n"),
+              std::string::npos)
+        << layer.text;
+}
+
 // The sample sets its drive through the extension, so the drive it reports is the one that
 // ran, whatever the layer's config picks.
 TEST_F(SampleApp, RunsTheDriveItReportsWhateverTheConfigSays) {

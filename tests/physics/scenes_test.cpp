@@ -25,12 +25,56 @@ INSTANTIATE_TEST_SUITE_P(Paper, SampleScene,
 INSTANTIATE_TEST_SUITE_P(Measurement, SampleScene,
                          ::testing::Values("free_motion", "press_table", "lift_hold", "jitter"));
 
+INSTANTIATE_TEST_SUITE_P(AppEngine, SampleScene, ::testing::Values("app_push"));
+
+// The coupling recipe (an app's own engine, the hands' impulses) pushes the cube as the
+// hands' simulation pushes one of its own: into the region, within 1 cm of it.
+TEST(SampleScenes, AnAppsOwnCubeIsPushedAsTheLayersOwnWouldBe) {
+    const Scene coupled = testing::sample_scene("app_push");
+    Scene own = coupled;
+    own.app_engine.clear();
+    const RunResult a = run_scene(coupled, RunOptions{});
+    const RunResult b = run_scene(own, RunOptions{});
+    ASSERT_TRUE(a.success && b.success);
+    const auto end = [](const RunResult& r) {
+        return std::find_if(r.bodies.begin(), r.bodies.end(),
+                            [](const auto& body) { return body.first == "cube"; })
+            ->second.position;
+    };
+    EXPECT_LT((end(a) - end(b)).norm(), 0.01) << end(a).transpose() << " / " << end(b).transpose();
+}
+
+// Pushed near its top, a 16 cm post the app keeps to itself falls over as the layer's own
+// does, and lands within 2 cm of it.
+TEST(SampleScenes, AnAppsOwnPostTipsOverAsTheLayersOwnWould) {
+    Scene coupled = testing::sample_scene("app_push");
+    Collider& post = coupled.colliders.back();
+    ASSERT_EQ(post.id, "cube");
+    post.shape.half_extents = Vec3(0.02, 0.08, 0.02);
+    post.pose.position.y() = 0.83;
+    post.friction = 0.8;
+    for (Keyframe& key : coupled.hands[static_cast<int>(HandSide::Right)]->keyframes) {
+        key.wrist.position.y() = 0.88;  // the hand pushes the post's upper half
+    }
+    coupled.success.clear();
+    Scene own = coupled;
+    own.app_engine.clear();
+    const RunResult a = run_scene(coupled, RunOptions{});
+    const RunResult b = run_scene(own, RunOptions{});
+    for (const RunResult* r : {&a, &b}) {
+        const Pose& end = r->bodies.front().second;
+        EXPECT_LT(std::abs((end.orientation * Vec3::UnitY()).y()), 0.5) << "still standing";
+    }
+    EXPECT_LT((a.bodies.front().second.position - b.bodies.front().second.position).norm(), 0.02);
+}
+
+// app_lift is played by SampleApp.AppEngineScenesMatchThePhysicsRunner.
 TEST(SampleScenes, EverySceneFileIsCoveredAbove) {
     int count = 0;
     for (const auto& e : std::filesystem::directory_iterator(PHYSHAND_SCENES_DIR)) {
         count += e.path().extension() == ".json";
     }
-    EXPECT_EQ(count, 8);
+    EXPECT_EQ(count, 10);
 }
 
 // The default runs one substep per frame: a hand pressed into a table or gripping a cube

@@ -213,6 +213,25 @@ typedef struct XrPhysicalColliderLocationsPHYSHAND {
 ** get theirs too, though the layer does not move them, so that an app can keep an object
 ** in its own engine (the coupling recipe below). impulseCount must equal locationCount.
 ** While baseSpace cannot be located the impulses read 0 and are kept for a later read. */
+/* Coupling recipe: an object the app keeps in its own physics engine.
+**   1. Declare it to the layer as a KINEMATIC collider of the same shape.
+**   2. Each frame, step the app's engine, then xrSetPhysicalColliderPosePHYSHAND the object
+**      to where that engine has it, timed at the frame's display time (not teleported).
+**   3. Locate hands and colliders at that time with XrPhysicalColliderImpulsesPHYSHAND
+**      chained, and apply each object's impulses to it in the app's engine (linear at its
+**      centre of mass, angular as a torque impulse); they act from its next step.
+** The hands then push the object as the app's engine lets it move, and the layer's hands
+** are stopped by it where the app's engine has it. Measured with the sample scenes (default
+** drive; physhand-scene and physhand-sample give the same):
+**   - Pushing works. app_push: the flat of the hand pushes a 0.2 kg cube 15 cm across a
+**     table into its region; it ends 6 mm from where the same cube simulated by the layer
+**     ends.
+**   - Tipping works. A 16 cm post pushed near its top falls over, as the layer's own does
+**     (tests/physics/scenes_test.cpp).
+**   - Lifting does not. app_lift: as a pinch closes, the impulses, which are those that stop
+**     the fingers against an object that cannot move, kick the 80 g cube out of the hand at
+**     2.5 m/s; nothing is held. A grip needs the object in the hands' own simulation:
+**     declare it DYNAMIC there (and teleport it to the app's pose when the app moves it). */
 typedef struct XrPhysicalColliderImpulsePHYSHAND {
     XrVector3f linearImpulse;  /* N*s */
     XrVector3f angularImpulse; /* N*m*s */
