@@ -51,8 +51,9 @@ XRAPI_ATTR XrResult XRAPI_CALL SetPhysicalContactReportingPHYSHAND(
         const std::size_t capacity = reportingInfo->eventCapacity == 0
                                          ? ContactEventLog::kDefaultCapacity
                                          : reportingInfo->eventCapacity;
-        locked.state->simulation->contact_events().enable(reportingInfo->persistEvents != XR_FALSE,
-                                                          capacity);
+        locked.state->simulation->contact_events().enable(
+            reportingInfo->persistEvents != XR_FALSE, capacity,
+            reportingInfo->colliderContacts != XR_FALSE);
         return XR_SUCCESS;
     });
 }
@@ -89,9 +90,13 @@ XRAPI_ATTR XrResult XRAPI_CALL GetPhysicalContactEventsPHYSHAND(
             const ContactEvent& e = log.events()[i];
             XrPhysicalContactEventPHYSHAND& out = events->events[i];
             out.kind = to_xr(e.kind);
-            out.hand = e.hand == HandSide::Left ? XR_HAND_LEFT_EXT : XR_HAND_RIGHT_EXT;
+            const bool hand = e.other == 0;
+            out.hand = !hand                      ? static_cast<XrHandEXT>(0)
+                       : e.hand == HandSide::Left ? XR_HAND_LEFT_EXT
+                                                  : XR_HAND_RIGHT_EXT;
             out.joint = static_cast<XrHandJointEXT>(index_of(e.joint));
             out.collider = app_handle(state, e.collider);
+            out.otherCollider = hand ? XR_NULL_HANDLE : app_handle(state, e.other);
             out.time = epoch + static_cast<XrTime>(std::llround(e.time_s * 1e9));
             out.point = to_xr(frame * e.point);
             out.normal = to_xr(frame.orientation * e.normal);

@@ -13,6 +13,7 @@ ContactEvent event_of(ContactEvent::Kind kind, const ContactInfo& c, double time
     e.hand = c.hand;
     e.joint = c.joint;
     e.collider = c.collider;
+    e.other = c.other;
     e.point = c.point;
     e.normal = c.normal;
     if (kind != ContactEvent::Kind::End) {
@@ -26,11 +27,12 @@ ContactEvent event_of(ContactEvent::Kind kind, const ContactInfo& c, double time
 
 }  // namespace
 
-void ContactEventLog::enable(bool persist, std::size_t capacity) {
+void ContactEventLog::enable(bool persist, std::size_t capacity, bool between_colliders) {
     if (capacity < 1 || capacity > kMaxCapacity) {
         throw std::invalid_argument("contact events: capacity must be 1 to 65536");
     }
     persist_ = persist;
+    between_colliders_ = between_colliders;
     capacity_ = capacity;
     if (events_.size() > capacity_) {  // as when they came to a full queue: the newest go
         lost_ += events_.size() - capacity_;
@@ -38,11 +40,16 @@ void ContactEventLog::enable(bool persist, std::size_t capacity) {
     }
 }
 
-void ContactEventLog::record(const std::vector<ContactInfo>& contacts, double time_s) {
+void ContactEventLog::record(const std::vector<ContactInfo>& hand_contacts,
+                             const std::vector<ContactInfo>& collider_contacts, double time_s) {
     if (!enabled()) return;
     std::map<Key, ContactInfo> now;
-    for (const ContactInfo& c : contacts) {
-        now.emplace(Key{static_cast<int>(c.hand), static_cast<int>(c.joint), c.collider}, c);
+    for (const ContactInfo& c : hand_contacts) {
+        now.emplace(Key{static_cast<int>(c.hand), static_cast<int>(c.joint), c.collider, 0}, c);
+    }
+    if (between_colliders_) {
+        for (const ContactInfo& c : collider_contacts)
+            now.emplace(Key{-1, 0, c.collider, c.other}, c);
     }
     for (const auto& [key, c] : touching_) {
         if (now.count(key) == 0) push(event_of(ContactEvent::Kind::End, c, time_s));

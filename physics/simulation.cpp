@@ -36,6 +36,18 @@ constexpr double kMinQuaternionNorm = 1e-3;
 constexpr double kSafeTravel = 2 * kHandContactReach;
 constexpr int kMaxSubstepPieces = 8;
 
+// One contact point into the frame's record of its pair.
+void add_contact_point(ContactInfo& info, const World::ContactPoint& c, bool first) {
+    if (first || -c.distance > info.penetration) {
+        info.point = c.point;
+        info.normal = c.normal;
+    }
+    info.impulse += c.impulse;
+    info.impulse_on_collider += c.impulse_on_collider;
+    info.penetration = std::max(info.penetration, -c.distance);
+    info.approach_speed = std::max(info.approach_speed, c.approach_speed);
+}
+
 // Checks a runtime sample and normalises quaternions that need it (a unit one is left
 // bit for bit as the runtime gave it); false if unusable.
 bool sanitise(HandPose& ghost) {
@@ -384,7 +396,7 @@ void Simulation::step_sampling(double time_s, const GhostSource& ghosts_at) {
         step_substeps(substeps);
         tick_ = frame * substeps;
         time_s_ = static_cast<double>(tick_) / rate;
-        contact_events_.record(contacts_, time_s_);
+        contact_events_.record(contacts_, collider_contacts_, time_s_);
         for (auto& slot : hands_) publish_hand(*slot);
     }
     shown_time_ = time_s;
@@ -436,6 +448,7 @@ void Simulation::step_substeps(int substeps) {
     last_max_penetration_ = 0.0;
     last_speeds_ = {};
     contacts_.clear();
+    collider_contacts_.clear();
     world_->clear_touched();
     for (auto& slot : hands_) slot->state.in_contact = {};
     const bool any_hand =
@@ -460,6 +473,7 @@ void Simulation::step_substeps(int substeps) {
         }
     }
     ContactIndex contact_index;
+    ColliderIndex collider_index;
     for (int i = 0; i < substeps; ++i) {
         const int pieces = pieces_for_fast_parts(h, target_speed);
         for (int p = 0; p < pieces; ++p) {
@@ -474,7 +488,7 @@ void Simulation::step_substeps(int substeps) {
             guards_.speed_clamps += static_cast<std::uint64_t>(speeds.clamped);
             last_speeds_.add(speeds);
             ++last_substeps_;
-            collect_contacts(contact_index);
+            collect_contacts(contact_index, collider_index);
         }
     }
     world_->finish_kinematic_motion();
@@ -496,7 +510,7 @@ int Simulation::pieces_for_fast_parts(double h, const std::array<double, 2>& tar
     return std::min(pieces, kMaxSubstepPieces);
 }
 
-void Simulation::collect_contacts(ContactIndex& contact_index) {
+void Simulation::collect_contacts(ContactIndex& contact_index, ColliderIndex& collider_index) {
     std::array<bool, 2> penetrating{};
     for (auto& slot : hands_) {
         if (slot->body) slot->body->clear_touches();
@@ -519,27 +533,34 @@ void Simulation::collect_contacts(ContactIndex& contact_index) {
         if (inserted) {
             contacts_.push_back({slot.side, slot.body->carried_joints(body).front(), c.collider});
         }
-        ContactInfo& info = contacts_[it->second];
-        if (inserted || -c.distance > info.penetration) {
-            info.point = c.point;
-            info.normal = c.normal;
-        }
-        info.impulse += c.impulse;
-        info.impulse_on_collider += c.impulse_on_collider;
+        add_contact_point(contacts_[it->second], c, inserted);
         if (hand_impulses_wanted_) {
             HandImpulse& given = hand_impulses_[c.collider];
             given.linear += c.impulse_on_collider;
             given.angular += (c.point - c.collider_centre).cross(c.impulse_on_collider);
         }
-        info.penetration = std::max(info.penetration, -c.distance);
-        info.approach_speed = std::max(info.approach_speed, c.approach_speed);
     });
+    if (contact_events_.between_colliders()) collect_collider_contacts(collider_index);
     for (auto& slot : hands_) {
         if (slot->simulated && !slot->body->contact_response() &&
             !penetrating[static_cast<int>(slot->side)]) {
             slot->body->set_contact_response(true);
         }
     }
+}
+
+void Simulation::collect_collider_contacts(ColliderIndex& collider_index) {
+    world_->for_each_collider_contact([&](const World::ContactPoint& c, ColliderHandle other) {
+        if (c.distance > kTouchDistance && c.impulse <= 0.0) return;
+        auto [it, inserted] =
+            collider_index.try_emplace({c.collider, other}, collider_contacts_.size());
+        if (inserted) {
+            ContactInfo info{HandSide::Left, Joint::Palm, c.collider};
+            info.other = other;
+            collider_contacts_.push_back(info);
+        }
+        add_contact_point(collider_contacts_[it->second], c, inserted);
+    });
 }
 
 void Simulation::publish_hand(HandSlot& slot) {

@@ -179,8 +179,11 @@ class Simulation {
     // `target_speed`: the fastest joint of each hand's target in this step, m/s.
     int pieces_for_fast_parts(double h, const std::array<double, 2>& target_speed) const;
     using ContactIndex = std::map<std::tuple<int, int, ColliderHandle>, std::size_t>;
-    // After each world step: contact flags, penetration, touched colliders, contacts_.
-    void collect_contacts(ContactIndex& contact_index);
+    using ColliderIndex = std::map<std::pair<ColliderHandle, ColliderHandle>, std::size_t>;
+    // After each world step: contact flags, penetration, touched colliders, contacts_ (and
+    // collider_contacts_ when contact events want them).
+    void collect_contacts(ContactIndex& contact_index, ColliderIndex& collider_index);
+    void collect_collider_contacts(ColliderIndex& collider_index);
     void publish_hand(HandSlot& slot);
     // The last physics frame at or before `time_s`, and whether `time_s` is within a
     // microsecond of it. Physics frames fall on the display clock of physics/frame_clock.h,
@@ -197,6 +200,7 @@ class Simulation {
     std::unique_ptr<World> world_;
     std::array<std::unique_ptr<HandSlot>, 2> hands_;
     std::vector<ContactInfo> contacts_;
+    std::vector<ContactInfo> collider_contacts_;  // only for contact events that want them
     ContactEventLog contact_events_;
     std::map<ColliderHandle, HandImpulse> hand_impulses_;  // not taken yet
     bool hand_impulses_wanted_ = false;

@@ -44,8 +44,7 @@ class HandWorld : public btDiscreteDynamicsWorld {
     const SpeedCheck& last_check() const { return last_check_; }
     // Only contact events need approach speeds.
     void set_measure_approach(bool measure) { measure_approach_ = measure; }
-    // How fast a hand-collider pair approached before the last substep's solver (0 for a
-    // manifold that is not one, or when they are not measured).
+    // How fast a pair approached before the last substep's solver (0 when not measured).
     double approach_speed(const btPersistentManifold* m) const {
         const auto it = approach_speed_.find(m);
         return it == approach_speed_.end() ? 0.0 : it->second;
@@ -73,9 +72,6 @@ class HandWorld : public btDiscreteDynamicsWorld {
     void note_approach_speeds() {
         for (int i = 0; i < dispatcher_.getNumManifolds(); ++i) {
             const btPersistentManifold* m = dispatcher_.getManifoldByIndexInternal(i);
-            const bool hand0 = role_of(m->getBody0()) == BodyRole::Hand;
-            const bool hand1 = role_of(m->getBody1()) == BodyRole::Hand;
-            if (hand0 == hand1) continue;
             const auto* a = btRigidBody::upcast(m->getBody0());
             const auto* b = btRigidBody::upcast(m->getBody1());
             double fastest = 0.0;
@@ -377,6 +373,28 @@ void World::for_each_hand_contact(const std::function<void(const ContactPoint&)>
             visit({a, static_cast<ColliderHandle>(b->getUserIndex2()), pt.getDistance(),
                    pt.getAppliedImpulse(), !b->isStaticOrKinematicObject(), point, normal,
                    impulse_on_collider, from_bt(b->getWorldTransform().getOrigin()), approach});
+        }
+    }
+}
+
+void World::for_each_collider_contact(
+    const std::function<void(const ContactPoint&, ColliderHandle other)>& visit) const {
+    for (int i = 0; i < dispatcher_->getNumManifolds(); ++i) {
+        const btPersistentManifold* m = dispatcher_->getManifoldByIndexInternal(i);
+        const btCollisionObject* a = m->getBody0();
+        const btCollisionObject* b = m->getBody1();
+        if (role_of(a) != BodyRole::Collider || role_of(b) != BodyRole::Collider) continue;
+        const double approach = world_->approach_speed(m);
+        for (int p = 0; p < m->getNumContacts(); ++p) {
+            const btManifoldPoint& pt = m->getContactPoint(p);
+            const btVector3 on_a = pt.m_normalWorldOnB * pt.getAppliedImpulse() +
+                                   pt.m_lateralFrictionDir1 * pt.m_appliedImpulseLateral1 +
+                                   pt.m_lateralFrictionDir2 * pt.m_appliedImpulseLateral2;
+            visit({nullptr, static_cast<ColliderHandle>(a->getUserIndex2()), pt.getDistance(),
+                   pt.getAppliedImpulse(), !a->isStaticOrKinematicObject(),
+                   from_bt(pt.getPositionWorldOnA()), -from_bt(pt.m_normalWorldOnB), from_bt(on_a),
+                   from_bt(a->getWorldTransform().getOrigin()), approach},
+                  static_cast<ColliderHandle>(b->getUserIndex2()));
         }
     }
 }

@@ -91,6 +91,10 @@ class World {
     void set_measure_approach(bool measure);
     // Hand-versus-collider contact points, re-measured at the current poses.
     void for_each_hand_contact(const std::function<void(const ContactPoint&)>& visit) const;
+    // Contact points between two colliders: `hand_part` null, `collider` the first, `other`
+    // the second (the normal from the first toward it, the impulse the first's).
+    void for_each_collider_contact(
+        const std::function<void(const ContactPoint&, ColliderHandle other)>& visit) const;
 
     void mark_touched(ColliderHandle handle, HandSide side);
     void clear_touched();

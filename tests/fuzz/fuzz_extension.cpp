@@ -431,6 +431,7 @@ class Harness {
         auto info = xr<XrPhysicalContactReportingInfoPHYSHAND>(
             XR_TYPE_PHYSICAL_CONTACT_REPORTING_INFO_PHYSHAND);
         info.persistEvents = in.byte() % 2;
+        info.colliderContacts = in.byte() % 2;
         // Mostly small buffers, some over the limit of 65536.
         info.eventCapacity = in.byte() < kFirstFlaw ? in.byte() : in.raw<std::uint32_t>();
         if (flaw == 0) info.type = XR_TYPE_HAND_DRIVE_INFO_PHYSHAND;

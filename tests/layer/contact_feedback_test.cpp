@@ -118,6 +118,30 @@ TEST_F(ContactEvents, AFullBufferCountsWhatItDrops) {
     EXPECT_EQ(event.kind, XR_PHYSICAL_CONTACT_EVENT_KIND_PERSIST_PHYSHAND);
 }
 
+// Asked for, a box dropped on the desk begins touching it, naming both and no hand.
+TEST_F(ContactEvents, CollidersTouchingEachOtherWhenAskedFor) {
+    auto reporting = xr<XrPhysicalContactReportingInfoPHYSHAND>(
+        XR_TYPE_PHYSICAL_CONTACT_REPORTING_INFO_PHYSHAND);
+    reporting.colliderContacts = XR_TRUE;
+    ASSERT_EQ(api().set_contact_reporting(session_, &reporting), XR_SUCCESS);
+    const auto desk = create_desk();
+    auto info = collider_info(XR_PHYSICAL_COLLIDER_SHAPE_BOX_PHYSHAND,
+                              XR_PHYSICAL_COLLIDER_MOTION_DYNAMIC_PHYSHAND, stage_,
+                              pose_at(0.3f, kDeskTop + 0.1f, -0.4f), frame());
+    info.halfExtents = {0.02f, 0.02f, 0.02f};
+    const auto box = create_collider(info);
+    simulate_frames(45);
+    const auto events = read_events();
+    ASSERT_FALSE(events.empty());
+    bool landed = false;
+    for (const XrPhysicalContactEventPHYSHAND& e : events) {
+        if (e.kind != XR_PHYSICAL_CONTACT_EVENT_KIND_BEGIN_PHYSHAND || e.hand != 0) continue;
+        landed = landed || (e.collider == box && e.otherCollider == desk) ||
+                 (e.collider == desk && e.otherCollider == box);
+    }
+    EXPECT_TRUE(landed);
+}
+
 TEST_F(ContactEvents, BadArgumentsAreRejected) {
     auto reporting = xr<XrPhysicalContactReportingInfoPHYSHAND>(
         XR_TYPE_PHYSICAL_CONTACT_REPORTING_INFO_PHYSHAND);

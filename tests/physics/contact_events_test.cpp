@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
 #include <tuple>
 
@@ -119,6 +120,33 @@ TEST(ContactEvents, EachTouchBeginsOnceAndEndsWhenTheHandLetsGo) {
     }
     EXPECT_GT(events.front().approach_speed, 0.1);  // the first touch is the hand's impact
     for (const auto& [key, now] : touching) EXPECT_FALSE(now) << "the cube drifted away";
+}
+
+// Colliders touching each other are reported only when asked for: a cube dropped 10 cm onto
+// a table begins touching it at about the speed it fell with.
+TEST(ContactEvents, BetweenCollidersOnlyWhenAskedFor) {
+    for (const bool asked : {false, true}) {
+        SCOPED_TRACE(asked);
+        Simulation sim(SimulationSettings{}, Vec3(0, -9.81, 0));
+        sim.contact_events().enable(false, ContactEventLog::kDefaultCapacity, asked);
+        const ColliderHandle table = sim.add_collider(
+            testing::static_box("table", Vec3(0, 0.725, -0.4), Vec3(0.4, 0.025, 0.3)));
+        const ColliderHandle cube =
+            sim.add_collider(testing::dynamic_box("cube", Vec3(0, 0.87, -0.4), 0.02, kCubeMass));
+        for (int f = 1; f <= 45; ++f) sim.step_to(f / 90.0, {HandPose{}, HandPose{}});
+        const auto& events = sim.contact_events().events();
+        if (!asked) {
+            EXPECT_TRUE(events.empty());
+            continue;
+        }
+        ASSERT_FALSE(events.empty());
+        const ContactEvent& first = events.front();
+        EXPECT_EQ(first.kind, ContactEvent::Kind::Begin);
+        EXPECT_TRUE((first.collider == table && first.other == cube) ||
+                    (first.collider == cube && first.other == table));
+        EXPECT_NEAR(first.approach_speed, std::sqrt(2 * 9.81 * 0.1), 0.2);
+        EXPECT_NEAR(std::abs(first.normal.y()), 1.0, 1e-3);
+    }
 }
 
 TEST(ContactEvents, AFullQueueKeepsWhatItHasAndCountsWhatItDrops) {

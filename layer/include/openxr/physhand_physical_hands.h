@@ -308,11 +308,11 @@ typedef struct XrHandDriveInfoPHYSHAND {
 } XrHandDriveInfoPHYSHAND;
 
 /* Since spec version 3: contact events, for sound, haptics and apps that keep their own
-** physics. Between the hands' bodies and colliders only (colliders touching each other are
-** not reported). A pair is one body of one hand (a finger bone, the palm, or a joint's
-** sphere) and one collider; it begins in the first physics frame (1/90 s) in which they
-** touch, persists while they do, and ends in the first frame in which they no longer do
-** (also when the hand stops being simulated or the collider is destroyed). */
+** physics. A pair is one body of one hand (a finger bone, the palm, or a joint's sphere)
+** and one collider, or (only when asked for: colliderContacts) two colliders; it begins in
+** the first physics frame (1/90 s) in which they touch, persists while they do, and ends in
+** the first frame in which they no longer do (also when the hand stops being simulated or a
+** collider is destroyed). */
 typedef enum XrPhysicalContactEventKindPHYSHAND {
     XR_PHYSICAL_CONTACT_EVENT_KIND_BEGIN_PHYSHAND = 1,
     XR_PHYSICAL_CONTACT_EVENT_KIND_PERSIST_PHYSHAND = 2,
@@ -326,16 +326,20 @@ typedef enum XrPhysicalContactEventKindPHYSHAND {
 ** 1024. Events that come to a full buffer are dropped and counted (lostEventCount); a
 ** smaller capacity than the events waiting drops the newest. persistEvents: also one
 ** PERSIST event per pair and physics frame (90 a second for each touching body: ask for
-** them only to sum impulses). */
+** them only to sum impulses). colliderContacts: also contacts between two colliders (a
+** stack of ten boxes resting is some thirty pairs; not asked for, nothing is spent on
+** them). */
 typedef struct XrPhysicalContactReportingInfoPHYSHAND {
     XrStructureType type; /* XR_TYPE_PHYSICAL_CONTACT_REPORTING_INFO_PHYSHAND */
     const void* XR_MAY_ALIAS next;
     XrBool32 persistEvents;
     uint32_t eventCapacity;
+    XrBool32 colliderContacts;
 } XrPhysicalContactReportingInfoPHYSHAND;
 
 typedef struct XrPhysicalContactEventPHYSHAND {
     XrPhysicalContactEventKindPHYSHAND kind;
+    /* 0 for a contact between two colliders (otherCollider set; joint then means nothing). */
     XrHandEXT hand;
     /* The first joint the touching body carries: a finger bone's base joint (the index
     ** finger's proximal bone is XR_HAND_JOINT_INDEX_PROXIMAL_EXT, its last bone, which
@@ -344,9 +348,13 @@ typedef struct XrPhysicalContactEventPHYSHAND {
     XrHandJointEXT joint;
     /* XR_NULL_HANDLE for a collider of the layer's config file, or one destroyed since. */
     XrPhysicalColliderPHYSHAND collider;
+    /* A contact between colliders: the one that touched `collider` (XR_NULL_HANDLE also as
+    ** for `collider`); XR_NULL_HANDLE for a hand's contact. */
+    XrPhysicalColliderPHYSHAND otherCollider;
     XrTime time; /* the end of the physics frame */
     /* In baseSpace: where they touched deepest in that frame (an END: where they last
-    ** touched), and the surface normal there, from the collider toward the hand. */
+    ** touched), on `collider`'s surface, and the surface normal there, from `collider`
+    ** toward the hand (or the other collider). */
     XrVector3f point;
     XrVector3f normal;
     /* The normal impulse between them over the frame, N*s (0 for END). */
