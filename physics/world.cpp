@@ -28,6 +28,14 @@ BodyRole role_of(const btCollisionObject* o) {
     return static_cast<BodyRole>(o->getUserIndex());
 }
 
+// What the last solve gave a contact's first body: the solver pushes it along the normal
+// and the two friction directions.
+Vec3 impulse_on_first(const btManifoldPoint& pt) {
+    return from_bt(pt.m_normalWorldOnB * pt.getAppliedImpulse() +
+                   pt.m_lateralFrictionDir1 * pt.m_appliedImpulseLateral1 +
+                   pt.m_lateralFrictionDir2 * pt.m_appliedImpulseLateral2);
+}
+
 }  // namespace
 
 // Bullet's world with two additions for hands: contacts at the ends of each finger capsule
@@ -365,11 +373,7 @@ void World::for_each_hand_contact(const std::function<void(const ContactPoint&)>
             const Vec3 normal = from_bt(pt.m_normalWorldOnB) * (swapped ? -1.0 : 1.0);
             const Vec3 point =
                 from_bt(swapped ? pt.getPositionWorldOnA() : pt.getPositionWorldOnB());
-            // The solver pushes Bullet's first body along the normal and friction directions.
-            const btVector3 on_first = pt.m_normalWorldOnB * pt.getAppliedImpulse() +
-                                       pt.m_lateralFrictionDir1 * pt.m_appliedImpulseLateral1 +
-                                       pt.m_lateralFrictionDir2 * pt.m_appliedImpulseLateral2;
-            const Vec3 impulse_on_collider = from_bt(on_first) * (swapped ? 1.0 : -1.0);
+            const Vec3 impulse_on_collider = impulse_on_first(pt) * (swapped ? 1.0 : -1.0);
             visit({a, static_cast<ColliderHandle>(b->getUserIndex2()), pt.getDistance(),
                    pt.getAppliedImpulse(), !b->isStaticOrKinematicObject(), point, normal,
                    impulse_on_collider, from_bt(b->getWorldTransform().getOrigin()), approach});
@@ -387,13 +391,10 @@ void World::for_each_collider_contact(
         const double approach = world_->approach_speed(m);
         for (int p = 0; p < m->getNumContacts(); ++p) {
             const btManifoldPoint& pt = m->getContactPoint(p);
-            const btVector3 on_a = pt.m_normalWorldOnB * pt.getAppliedImpulse() +
-                                   pt.m_lateralFrictionDir1 * pt.m_appliedImpulseLateral1 +
-                                   pt.m_lateralFrictionDir2 * pt.m_appliedImpulseLateral2;
             visit({nullptr, static_cast<ColliderHandle>(a->getUserIndex2()), pt.getDistance(),
                    pt.getAppliedImpulse(), !a->isStaticOrKinematicObject(),
-                   from_bt(pt.getPositionWorldOnA()), -from_bt(pt.m_normalWorldOnB), from_bt(on_a),
-                   from_bt(a->getWorldTransform().getOrigin()), approach},
+                   from_bt(pt.getPositionWorldOnA()), -from_bt(pt.m_normalWorldOnB),
+                   impulse_on_first(pt), from_bt(a->getWorldTransform().getOrigin()), approach},
                   static_cast<ColliderHandle>(b->getUserIndex2()));
         }
     }
