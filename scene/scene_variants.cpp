@@ -5,6 +5,8 @@
 #include <random>
 #include <utility>
 
+#include "tracking.h"
+
 namespace physhand {
 
 namespace {
@@ -99,6 +101,52 @@ Scene sped_up(const Scene& input, double speed) {
     return scene;
 }
 
+Scene sped_up_aiming(const Scene& input, double speed, std::string& adapted) {
+    adapted.clear();
+    std::vector<double> times;
+    for (const auto& hand : input.hands) {
+        if (!hand) continue;
+        for (const Keyframe& k : hand->keyframes) times.push_back(k.t);
+    }
+    std::sort(times.begin(), times.end());
+    times.erase(std::unique(times.begin(), times.end()), times.end());
+    // The time map, piecewise linear through the keyframe times: a stroke keeps its length.
+    std::vector<double> mapped(times.size());
+    for (std::size_t i = 0; i < times.size(); ++i) {
+        if (i == 0) {
+            mapped[i] = times[i] / speed;
+            continue;
+        }
+        const double length = times[i] - times[i - 1];
+        bool stroke = false;
+        for (HandSide side : kHandSides) {
+            const auto& hand = input.hand(side);
+            if (!hand || hand->keyframes.empty()) continue;
+            const Vec3 from = evaluate_script(*hand, side, times[i - 1])[Joint::Wrist].position;
+            const Vec3 to = evaluate_script(*hand, side, times[i])[Joint::Wrist].position;
+            stroke = stroke || (to - from).norm() > kStrokeSpeed * length;
+        }
+        mapped[i] = mapped[i - 1] + (stroke ? length : length / speed);
+        if (stroke) {
+            adapted += (adapted.empty() ? "throw kept at its own pace: " : ", ") +
+                       printed("%.2f", times[i - 1]) + printed("-%.2f s", times[i]);
+        }
+    }
+    if (adapted.empty()) return sped_up(input, speed);
+    Scene scene = input;
+    const auto map_time = [&](double t) {
+        if (t <= times.front()) return t / speed;
+        const auto after = std::upper_bound(times.begin(), times.end(), t);
+        if (after == times.end()) return mapped.back() + (t - times.back()) / speed;
+        const std::size_t i = static_cast<std::size_t>(after - times.begin());
+        const double u = (t - times[i - 1]) / (times[i] - times[i - 1]);
+        return mapped[i - 1] + u * (mapped[i] - mapped[i - 1]);
+    };
+    for_each_time(scene, map_time);
+    scene.duration_s = std::max(input.duration_s, map_time(input.duration_s));
+    return scene;
+}
+
 Scene squeezed(const Scene& input, double curl) {
     Scene scene = input;
     for (auto& hand : scene.hands) {
@@ -120,9 +168,9 @@ Scene squeezed(const Scene& input, double curl) {
 
 std::vector<SceneVariant> scene_variants(const Scene& base, const VariantOptions& options) {
     std::vector<SceneVariant> out;
-    auto add = [&](std::string family, std::string name, Scene scene) {
+    auto add = [&](std::string family, std::string name, Scene scene, std::string adapted = {}) {
         scene.name = base.name + "/" + family + "/" + name;
-        out.push_back({std::move(family), std::move(name), std::move(scene)});
+        out.push_back({std::move(family), std::move(name), std::move(scene), std::move(adapted)});
     };
 
     for (double factor : {0.3, 3.0}) {
@@ -139,7 +187,16 @@ std::vector<SceneVariant> scene_variants(const Scene& base, const VariantOptions
         }
         add("friction", "0.5", std::move(s));
     }
-    for (double speed : {0.7, 1.3}) add("speed", printed("x%g", speed), sped_up(base, speed));
+    for (double speed : {0.7, 1.3}) {
+        std::string adapted;
+        Scene s = sped_up_aiming(base, speed, adapted);
+        add("speed", printed("x%g", speed), std::move(s), std::move(adapted));
+    }
+    for (double scale : {0.75, 1.25}) {
+        std::string adapted;
+        Scene s = resized(base, scale, adapted);
+        add("size", printed("x%g", scale), std::move(s), std::move(adapted));
+    }
     for (int seed = 1; seed <= options.seeds; ++seed) {
         for (double rate : {30.0, 60.0}) {
             Scene s = base;

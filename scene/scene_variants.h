@@ -11,9 +11,12 @@ namespace physhand {
 // A scene changed in one way a real user or headset changes it: what the robustness
 // benchmark plays instead of the scenes the hand was tuned on.
 struct SceneVariant {
-    std::string family;  // mass, friction, speed, tracking, noise, dropout, mirror
+    std::string family;  // mass, friction, speed, size, tracking, noise, dropout, mirror
     std::string name;    // the family's parameter, e.g. "x0.3", "30hz_2mm_seed2"
     Scene scene;
+    // How the motion was changed to suit the variant, as a person would change it; empty: the
+    // scene's own motion.
+    std::string adapted;
 };
 
 // How many seeds the families with random input (noise, dropouts) are played with.
@@ -25,8 +28,9 @@ struct VariantOptions {
 // - mass: every dynamic collider x0.3 and x3, the motion unchanged;
 // - friction: every dynamic collider's friction 0.5;
 // - speed: the whole script (hands, kinematic paths, dropouts, timed predicates) 0.7x and
-//   1.3x as fast; the scene lasts at least as long as before, so what the hand set moving
-//   has the time it had to settle;
+//   1.3x as fast, throws and flicks at their own pace (sped_up_aiming); the scene lasts at
+//   least as long as before, so what the hand set moving has the time it had to settle;
+// - size: the objects the hands handle x0.75 and x1.25, the hands adapted (resized);
 // - tracking: 30 and 60 Hz with 2 mm of noise;
 // - noise: 3 mm of noise at the scene's rate;
 // - dropout: one 300 ms dropout of each tracked hand at a seeded time within its motion;
@@ -38,6 +42,21 @@ std::vector<SceneVariant> scene_variants(const Scene& base, const VariantOptions
 Scene mirrored(const Scene& scene);
 // The scene's script played `speed` times as fast.
 Scene sped_up(const Scene& scene, double speed);
+// The same, except a throw or a flick (a keyframe leg in which a wrist moves faster than
+// kStrokeSpeed): it keeps its own pace, as a person aiming at a target throws as hard as the
+// target needs, however fast the rest. `adapted` says which legs kept their pace, or is
+// cleared when none did.
+inline constexpr double kStrokeSpeed = 0.5;  // m/s, docs/metrics.md's throw
+Scene sped_up_aiming(const Scene& scene, double speed, std::string& adapted);
+// Every dynamic box, sphere, capsule and cylinder that a hand handles (a ghost joint comes
+// within kHandledDistance of it where it lies at the start) `scale` times as large, as dense,
+// resting where it rested (its lowest point kept). The hands adapt as a person would: raised
+// by as much as the handled objects' centres rose, and in the grip (the keyframe reaching
+// deepest into a handled object) each finger's curl changed so that its tip reaches as deep
+// into that object as before, the change kept wherever the finger is curled. `adapted` says
+// what changed.
+inline constexpr double kHandledDistance = 0.02;  // m
+Scene resized(const Scene& scene, double scale, std::string& adapted);
 // The final grip made tighter: the four fingers' curl raised to at least `curl` from the
 // keyframe where each hand's curls reach their final values (docs/metrics.md
 // squeeze_penetration_mm: the ghost's fingers close further into what the hand holds).

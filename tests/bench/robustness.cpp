@@ -68,17 +68,19 @@ int main(int argc, char** argv) {
 
     std::ofstream csv(options->out / "robustness.csv");
     csv << "scene,family,variant,drive,substeps,success,max_penetration_mm,max_body_speed,"
-           "reseats,cause\n";
+           "reseats,cause,adapted\n";
     std::vector<std::string> columns;
     std::map<std::string, std::map<std::string, Tally>> tallies;  // column -> family -> tally
     std::map<std::string, std::vector<std::string>> failures;     // column -> lines
     std::vector<std::string> families;
+    std::vector<std::string> adapted;  // "variant: how its motion was adapted"
     for (const std::string& name : kScenes) {
         if (!bench::selected(options->only_scenes, name)) continue;
         const Scene base = load_scene(options->scenes_dir / (name + ".json"));
         for (const SceneVariant& v : scene_variants(base, variant_options)) {
             if (std::find(families.begin(), families.end(), v.family) == families.end())
                 families.push_back(v.family);
+            if (!v.adapted.empty()) adapted.push_back(v.scene.name + ": " + v.adapted);
             for (const auto& [drive, substeps] : kConfigurations) {
                 if (!bench::selected(options->only_drives, drive)) continue;
                 if (!bench::selected(options->only_substeps, substeps)) continue;
@@ -99,7 +101,7 @@ int main(int argc, char** argv) {
                 csv << name << ',' << v.family << ',' << v.name << ',' << drive << ',' << substeps
                     << ',' << (r.success ? "true" : "false") << ',' << r.metrics.max_penetration_mm
                     << ',' << r.metrics.max_body_speed << ',' << r.guards.reseats << ','
-                    << csv_field(cause) << '\n';
+                    << csv_field(cause) << ',' << csv_field(v.adapted) << '\n';
             }
         }
     }
@@ -121,6 +123,9 @@ int main(int argc, char** argv) {
            << (failures[c].empty() ? "." : "") << "\n\n";
         for (const std::string& f : failures[c]) md << "- " << f << '\n';
     }
+    md << "\nVariants whose motion was adapted: " << adapted.size() << (adapted.empty() ? "." : "")
+       << "\n\n";
+    for (const std::string& a : adapted) md << "- " << a << '\n';
     md << "\n### Squeeze\n\nsqueeze_penetration_mm (docs/metrics.md): lift_hold with the four "
           "fingers' final curl raised from 0.3 to 1.0, max_penetration_mm, and whether the cube "
           "stayed held.\n\n| final curl |";

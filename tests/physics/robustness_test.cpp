@@ -39,9 +39,10 @@ TEST(Robustness, ALongDropoutLetsGoGently) {
     EXPECT_LT(r.metrics.max_body_speed, 2.6);
 }
 
-// Every family: other masses, a slipperier cube, the motion faster and slower, 30 and 60 Hz
-// tracking with 2 mm of noise, 3 mm of noise at 90 Hz (before the NoiseFilter the cube was
-// never lifted), dropouts anywhere in the motion, and the left hand.
+// Every family: other masses, a slipperier cube, the motion faster and slower, a smaller and
+// a larger cube (gripped as a person would grip it), 30 and 60 Hz tracking with 2 mm of
+// noise, 3 mm of noise at 90 Hz (before the NoiseFilter the cube was never lifted), dropouts
+// anywhere in the motion, and the left hand.
 TEST(Robustness, LiftHoldVariantsHold) {
     for (const SceneVariant& v : scene_variants(sample_scene("lift_hold"), {.seeds = 2})) {
         const RunResult r = run_scene(v.scene, RunOptions{});

@@ -67,10 +67,83 @@ TEST(SceneVariants, EveryFamilyWithItsSeeds) {
             EXPECT_LE(d.to_s, scene.hand(HandSide::Right)->keyframes.back().t);
         }
     }
-    const std::map<std::string, int> expected = {{"mass", 2},     {"friction", 1}, {"speed", 2},
-                                                 {"tracking", 6}, {"noise", 3},    {"dropout", 3},
-                                                 {"mirror", 1}};
+    const std::map<std::string, int> expected = {{"mass", 2},    {"friction", 1}, {"speed", 2},
+                                                 {"size", 2},    {"tracking", 6}, {"noise", 3},
+                                                 {"dropout", 3}, {"mirror", 1}};
     EXPECT_EQ(per_family, expected);
+}
+
+// A person aiming at a target throws as hard as the target needs: the wind-up and the rest
+// change pace, the throw does not. Without a throw the script is sped up whole.
+TEST(SceneVariants, AThrowKeepsItsOwnPaceWhenTheRestChanges) {
+    const Scene scene = sample_scene("throw");
+    std::string adapted;
+    const Scene slow = sped_up_aiming(scene, 0.7, adapted);
+    EXPECT_NE(adapted.find("5.10-5.32 s, 5.32-5.38 s"), std::string::npos) << adapted;
+    const auto& keys = scene.hand(HandSide::Right)->keyframes;
+    const auto& slow_keys = slow.hand(HandSide::Right)->keyframes;
+    ASSERT_EQ(keys.size(), slow_keys.size());
+    for (std::size_t k = 1; k < keys.size(); ++k) {
+        const double leg = keys[k].t - keys[k - 1].t;
+        const double speed = (keys[k].wrist.position - keys[k - 1].wrist.position).norm() / leg;
+        const double slow_leg = slow_keys[k].t - slow_keys[k - 1].t;
+        EXPECT_NEAR(slow_leg, speed > kStrokeSpeed ? leg : leg / 0.7, 1e-9) << k;
+        EXPECT_EQ(slow_keys[k].wrist.position, keys[k].wrist.position);
+    }
+    // The 0.28 s throw is not drawn out.
+    EXPECT_NEAR(slow.duration_s, scene.duration_s / 0.7 - 0.28 * (1 / 0.7 - 1), 1e-9);
+
+    const Scene lift = sample_scene("lift_hold");
+    const Scene fast = sped_up_aiming(lift, 1.3, adapted);
+    EXPECT_TRUE(adapted.empty()) << adapted;
+    EXPECT_EQ(fast.hand(HandSide::Right)->keyframes.back().t,
+              sped_up(lift, 1.3).hand(HandSide::Right)->keyframes.back().t);
+}
+
+// How deep the index fingertip's centre lies in a box along the ray from its centre.
+double depth_in_box(const Collider& box, const Vec3& world) {
+    const Vec3 p = box.pose.inverse() * world;
+    const double fraction = p.cwiseAbs().cwiseQuotient(box.shape.half_extents).maxCoeff();
+    return p.norm() * (1.0 / fraction - 1.0);
+}
+
+// A larger cube rests where the smaller one did, as dense; the hand reaches for it higher and
+// grips it as deep; what the hand never comes near keeps its size.
+TEST(SceneVariants, AnotherSizeRestsWhereItWasAndIsGrippedAsDeep) {
+    const Scene scene = sample_scene("lift_hold");
+    for (double scale : {0.75, 1.25}) {
+        std::string adapted;
+        const Scene sized = resized(scene, scale, adapted);
+        EXPECT_NE(adapted.find("hand raised"), std::string::npos) << adapted;
+        const Collider& cube = *scene.find_collider("cube");
+        const Collider& big = *sized.find_collider("cube");
+        EXPECT_NEAR(big.shape.half_extents.x(), scale * 0.02, 1e-12);
+        EXPECT_NEAR(big.pose.position.y() - big.shape.half_extents.y(),
+                    cube.pose.position.y() - cube.shape.half_extents.y(), 1e-12);
+        EXPECT_NEAR(big.mass, cube.mass * scale * scale * scale, 1e-12);
+        EXPECT_EQ(sized.find_collider("table")->shape.half_extents,
+                  scene.find_collider("table")->shape.half_extents);
+
+        const auto& keys = scene.hand(HandSide::Right)->keyframes;
+        const auto& sized_keys = sized.hand(HandSide::Right)->keyframes;
+        const double rise = (scale - 1.0) * 0.02;
+        for (std::size_t k = 0; k < keys.size(); ++k) {
+            EXPECT_NEAR(sized_keys[k].wrist.position.y(), keys[k].wrist.position.y() + rise, 1e-12);
+        }
+        // The grip (t = 3.2 s): the index fingertip as deep in the cube as before, within 1 mm.
+        const std::size_t grip = 4;
+        ASSERT_DOUBLE_EQ(keys[grip].t, 3.2);
+        const auto tip = [&](const Keyframe& k) {
+            return pose_hand(HandSide::Right, k.wrist, k.articulation)[Joint::IndexTip].position;
+        };
+        EXPECT_NEAR(depth_in_box(big, tip(sized_keys[grip])), depth_in_box(cube, tip(keys[grip])),
+                    1e-3)
+            << scale;
+    }
+    std::string adapted;
+    const Scene thrown = resized(sample_scene("throw"), 1.25, adapted);
+    EXPECT_NEAR(thrown.find_collider("projectile")->shape.half_extents.x(), 0.025, 1e-12);
+    EXPECT_EQ(thrown.find_collider("pyramid_20")->shape.half_extents.x(), 0.025);
 }
 
 TEST(SceneVariants, ASqueezeClosesTheFinalGripOnly) {

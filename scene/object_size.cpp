@@ -1,0 +1,237 @@
+// The size family of scene_variants: the objects a hand handles made larger or smaller, the
+// hands adapted to them as a person would adapt.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "scene_variants.h"
+#include "tracking.h"
+
+namespace physhand {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr double kSamplePeriod = 0.02;   // s between the script's samples searched for contact
+constexpr int kCurlSteps = 100;          // curls tried per finger
+constexpr double kGripTolerance = 5e-4;  // m of fingertip depth a person would not tell apart
+
+constexpr std::array<Joint, kFingerCount> kTips = {
+    Joint::ThumbTip, Joint::IndexTip, Joint::MiddleTip, Joint::RingTip, Joint::LittleTip};
+constexpr std::array<const char*, kFingerCount> kFingerNames = {"thumb", "index", "middle", "ring",
+                                                                "little"};
+
+bool resizable(const Collider& c) {
+    return c.motion == Motion::Dynamic &&
+           (c.shape.kind == ShapeKind::Box || c.shape.kind == ShapeKind::Sphere ||
+            c.shape.kind == ShapeKind::Capsule || c.shape.kind == ShapeKind::Cylinder);
+}
+
+// From `world` to the collider's surface, negative inside, m (resizable shapes only).
+double signed_distance(const Collider& c, const Vec3& world) {
+    const Vec3 p = c.pose.inverse() * world;
+    const double r = c.shape.radius;
+    const double h = c.shape.half_height;
+    switch (c.shape.kind) {
+        case ShapeKind::Box: {
+            const Vec3 q = p.cwiseAbs() - c.shape.half_extents;
+            return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
+        }
+        case ShapeKind::Sphere:
+            return p.norm() - r;
+        case ShapeKind::Capsule:
+            return (p - Vec3(0, std::clamp(p.y(), -h, h), 0)).norm() - r;
+        case ShapeKind::Cylinder: {
+            const double out = std::hypot(p.x(), p.z()) - r;
+            const double along = std::abs(p.y()) - h;
+            return std::min(std::max(out, along), 0.0) +
+                   std::hypot(std::max(out, 0.0), std::max(along, 0.0));
+        }
+        default:
+            return kInfinity;
+    }
+}
+
+// How far the collider reaches from its centre against `up`: its centre's height above what
+// it rests on.
+double reach_below(const Collider& c, const Vec3& up) {
+    const Vec3 u = c.pose.orientation.inverse() * up;
+    const double r = c.shape.radius;
+    const double h = c.shape.half_height;
+    switch (c.shape.kind) {
+        case ShapeKind::Box:
+            return u.cwiseAbs().dot(c.shape.half_extents);
+        case ShapeKind::Sphere:
+            return r;
+        case ShapeKind::Capsule:
+            return r + std::abs(u.y()) * h;
+        case ShapeKind::Cylinder:
+            return std::abs(u.y()) * h + r * std::sqrt(std::max(0.0, 1.0 - u.y() * u.y()));
+        default:
+            return 0.0;
+    }
+}
+
+// How deep `world` lies in the collider along the ray from its centre (negative: outside), m:
+// the depth a finger closing toward an object's centre reaches, which a larger object deepens
+// and a smaller one lessens wherever the finger touches it.
+double radial_depth(const Collider& c, const Vec3& world) {
+    const Vec3 p = c.pose.inverse() * world;
+    const double r = c.shape.radius;
+    const double h = c.shape.half_height;
+    double fraction = 0.0;  // of the way from the centre to the surface
+    switch (c.shape.kind) {
+        case ShapeKind::Box:
+            fraction = p.cwiseAbs().cwiseQuotient(c.shape.half_extents).maxCoeff();
+            break;
+        case ShapeKind::Sphere:
+            fraction = p.norm() / r;
+            break;
+        case ShapeKind::Capsule:
+        case ShapeKind::Cylinder:
+            fraction = std::max(std::hypot(p.x(), p.z()) / r,
+                                std::abs(p.y()) / (c.shape.kind == ShapeKind::Capsule ? h + r : h));
+            break;
+        default:
+            return -kInfinity;
+    }
+    return fraction > 0.0 ? p.norm() * (1.0 / fraction - 1.0) : kInfinity;
+}
+
+// How deep the fingertip's skin reaches into the nearest of `objects` (negative: short of it).
+double tip_depth(const HandPose& hand, Joint tip, const std::vector<const Collider*>& objects) {
+    double deepest = -kInfinity;
+    for (const Collider* c : objects)
+        deepest = std::max(deepest, radial_depth(*c, hand[tip].position));
+    return hand.radii[index_of(tip)] + deepest;
+}
+
+// Closest a ghost joint's skin comes to the collider while the hands' scripts play.
+double closest_approach(const Scene& scene, const Collider& c) {
+    double closest = kInfinity;
+    for (HandSide side : kHandSides) {
+        const auto& script = scene.hand(side);
+        if (!script) continue;
+        const double from =
+            script->keyframes.empty() ? script->recorded.front().t : script->keyframes.front().t;
+        const double to =
+            script->keyframes.empty() ? script->recorded.back().t : script->keyframes.back().t;
+        for (double t = from; t <= to + 1e-9; t += kSamplePeriod) {
+            const HandPose hand = evaluate_script(*script, side, t);
+            if (!hand.active) continue;
+            for (std::size_t j = 0; j < kJointCount; ++j) {
+                closest =
+                    std::min(closest, signed_distance(c, hand.joints[j].position) - hand.radii[j]);
+            }
+        }
+    }
+    return closest;
+}
+
+// The change of each finger's curl that keeps its tip as deep in the grip as before, for a
+// hand raised by `rise` gripping `after` instead of `before`; none for a hand that grips
+// nothing.
+std::array<double, kFingerCount> grip_change(const HandScript& script, HandSide side,
+                                             const Vec3& rise,
+                                             const std::vector<const Collider*>& before,
+                                             const std::vector<const Collider*>& after) {
+    std::array<double, kFingerCount> change{};
+    const Keyframe* grip = nullptr;
+    double deepest = 0.0;
+    for (const Keyframe& k : script.keyframes) {
+        const HandPose hand = pose_hand(side, k.wrist, k.articulation, script.scale);
+        double depth = 0.0;
+        for (Joint tip : kTips) depth += std::max(0.0, tip_depth(hand, tip, before));
+        if (depth > deepest) {
+            deepest = depth;
+            grip = &k;
+        }
+    }
+    if (!grip) return change;
+    const HandPose held = pose_hand(side, grip->wrist, grip->articulation, script.scale);
+    Pose wrist = grip->wrist;
+    wrist.position += rise;
+    for (std::size_t f = 0; f < kFingerCount; ++f) {
+        const double want = tip_depth(held, kTips[f], before);
+        const double original = grip->articulation.curl[f];
+        if (want < -kHandledDistance || original == 0.0) continue;  // not part of the grip
+        double best = original, best_error = kInfinity;
+        for (int step = 0; step <= kCurlSteps; ++step) {
+            HandArticulation a = grip->articulation;
+            a.curl[f] = static_cast<double>(step) / kCurlSteps;
+            const HandPose hand = pose_hand(side, wrist, a, script.scale);
+            // Within the tolerance every curl is as good: the nearest to the original wins.
+            const double error =
+                std::max(kGripTolerance, std::abs(tip_depth(hand, kTips[f], after) - want));
+            const bool closer = std::abs(a.curl[f] - original) < std::abs(best - original);
+            if (error < best_error || (error == best_error && closer)) {
+                best_error = error;
+                best = a.curl[f];
+            }
+        }
+        change[f] = best - original;
+    }
+    return change;
+}
+
+}  // namespace
+
+Scene resized(const Scene& input, double scale, std::string& adapted) {
+    adapted.clear();
+    Scene scene = input;
+    const Vec3 up = input.gravity.norm() > 0.0 ? Vec3(-input.gravity.normalized()) : Vec3::UnitY();
+    std::vector<const Collider*> before, after;
+    double closest = kInfinity;
+    double rise = 0.0;
+    for (std::size_t i = 0; i < input.colliders.size(); ++i) {
+        const Collider& c = input.colliders[i];
+        if (!resizable(c)) continue;
+        const double approach = closest_approach(input, c);
+        if (approach > kHandledDistance) continue;
+        Collider& resized = scene.colliders[i];
+        const double below = reach_below(c, up);
+        resized.shape.half_extents *= scale;
+        resized.shape.radius *= scale;
+        resized.shape.half_height *= scale;
+        resized.pose.position += (scale - 1.0) * below * up;
+        resized.mass *= scale * scale * scale;
+        before.push_back(&c);
+        after.push_back(&resized);
+        if (approach < closest) {
+            closest = approach;
+            rise = (scale - 1.0) * below;
+        }
+    }
+    if (before.empty()) return scene;
+
+    std::ostringstream what;
+    what.precision(2);
+    what << std::fixed << "hand raised " << rise * 1000.0 << " mm with the object's centre";
+    for (HandSide side : kHandSides) {
+        auto& script = scene.hands[static_cast<int>(side)];
+        if (!script) continue;
+        const std::array<double, kFingerCount> change =
+            grip_change(*script, side, rise * up, before, after);
+        for (Keyframe& k : script->keyframes) {
+            k.wrist.position += rise * up;
+            for (std::size_t f = 0; f < kFingerCount; ++f) {
+                double& curl = k.articulation.curl[f];
+                if (curl > 0.0) curl = std::clamp(curl + change[f], 0.0, 1.0);
+            }
+        }
+        for (RecordedSample& sample : script->recorded) {
+            for (Pose& joint : sample.hand.joints) joint.position += rise * up;
+        }
+        for (std::size_t f = 0; f < kFingerCount; ++f) {
+            if (change[f] != 0.0) {
+                what << ", " << kFingerNames[f] << " curl " << std::showpos << change[f]
+                     << std::noshowpos;
+            }
+        }
+    }
+    adapted = what.str();
+    return scene;
+}
+
+}  // namespace physhand
