@@ -2,6 +2,7 @@
 // hands adapted to them as a person would adapt.
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 
@@ -129,36 +130,56 @@ double closest_approach(const Scene& scene, const Collider& c) {
     return closest;
 }
 
-// The change of each finger's curl that keeps its tip as deep in the grip as before, for a
-// hand raised by `rise` gripping `after` instead of `before`; none for a hand that grips
-// nothing.
+// Where a hand works on the handled objects: the keyframe reaching deepest into one with its
+// fingertips (a grip), or else coming closest to one with any joint (a push or a flick), and
+// that object.
+struct WorkPoint {
+    const Keyframe* key = nullptr;
+    const Collider* object = nullptr;
+};
+
+WorkPoint work_point(const HandScript& script, HandSide side,
+                     const std::vector<const Collider*>& objects) {
+    WorkPoint grip, touch;
+    double deepest = 0.0, closest = kInfinity;
+    for (const Keyframe& k : script.keyframes) {
+        const HandPose hand = pose_hand(side, k.wrist, k.articulation, script.scale);
+        for (const Collider* c : objects) {
+            double depth = 0.0;
+            for (Joint tip : kTips) depth += std::max(0.0, tip_depth(hand, tip, {c}));
+            if (depth > deepest) {
+                deepest = depth;
+                grip = {&k, c};
+            }
+            for (std::size_t j = 0; j < kJointCount; ++j) {
+                const double gap = signed_distance(*c, hand.joints[j].position) - hand.radii[j];
+                if (gap < closest) {
+                    closest = gap;
+                    touch = {&k, c};
+                }
+            }
+        }
+    }
+    return grip.key ? grip : touch;
+}
+
+// The change of each finger's curl that keeps its tip as deep in the grip as before, for the
+// hand at `grip` raised by `rise`, gripping `after` instead of `before`.
 std::array<double, kFingerCount> grip_change(const HandScript& script, HandSide side,
-                                             const Vec3& rise,
+                                             const Keyframe& grip, const Vec3& rise,
                                              const std::vector<const Collider*>& before,
                                              const std::vector<const Collider*>& after) {
     std::array<double, kFingerCount> change{};
-    const Keyframe* grip = nullptr;
-    double deepest = 0.0;
-    for (const Keyframe& k : script.keyframes) {
-        const HandPose hand = pose_hand(side, k.wrist, k.articulation, script.scale);
-        double depth = 0.0;
-        for (Joint tip : kTips) depth += std::max(0.0, tip_depth(hand, tip, before));
-        if (depth > deepest) {
-            deepest = depth;
-            grip = &k;
-        }
-    }
-    if (!grip) return change;
-    const HandPose held = pose_hand(side, grip->wrist, grip->articulation, script.scale);
-    Pose wrist = grip->wrist;
+    const HandPose held = pose_hand(side, grip.wrist, grip.articulation, script.scale);
+    Pose wrist = grip.wrist;
     wrist.position += rise;
     for (std::size_t f = 0; f < kFingerCount; ++f) {
         const double want = tip_depth(held, kTips[f], before);
-        const double original = grip->articulation.curl[f];
+        const double original = grip.articulation.curl[f];
         if (want < -kHandledDistance || original == 0.0) continue;  // not part of the grip
         double best = original, best_error = kInfinity;
         for (int step = 0; step <= kCurlSteps; ++step) {
-            HandArticulation a = grip->articulation;
+            HandArticulation a = grip.articulation;
             a.curl[f] = static_cast<double>(step) / kCurlSteps;
             const HandPose hand = pose_hand(side, wrist, a, script.scale);
             // Within the tolerance every curl is as good: the nearest to the original wins.
@@ -182,8 +203,10 @@ Scene resized(const Scene& input, double scale, std::string& adapted) {
     Scene scene = input;
     const Vec3 up = input.gravity.norm() > 0.0 ? Vec3(-input.gravity.normalized()) : Vec3::UnitY();
     std::vector<const Collider*> before, after;
+    double support = kInfinity;  // height of what the handled objects rest on
+    double stack = 0.0;          // their heights, one on another
     double closest = kInfinity;
-    double rise = 0.0;
+    double nearest_rise = 0.0;  // of the centre of the object a hand comes closest to
     for (std::size_t i = 0; i < input.colliders.size(); ++i) {
         const Collider& c = input.colliders[i];
         if (!resizable(c)) continue;
@@ -198,35 +221,55 @@ Scene resized(const Scene& input, double scale, std::string& adapted) {
         resized.mass *= scale * scale * scale;
         before.push_back(&c);
         after.push_back(&resized);
+        support = std::min(support, c.pose.position.dot(up) - below);
+        stack += 2.0 * below;
         if (approach < closest) {
             closest = approach;
-            rise = (scale - 1.0) * below;
+            nearest_rise = (scale - 1.0) * below;
         }
     }
     if (before.empty()) return scene;
 
     std::ostringstream what;
-    what.precision(2);
-    what << std::fixed << "hand raised " << rise * 1000.0 << " mm with the object's centre";
+    what.precision(1);
+    what << std::fixed;
     for (HandSide side : kHandSides) {
         auto& script = scene.hands[static_cast<int>(side)];
         if (!script) continue;
+        for (RecordedSample& sample : script->recorded) {
+            for (Pose& joint : sample.hand.joints) joint.position += nearest_rise * up;
+        }
+        const WorkPoint work = work_point(*input.hand(side), side, before);
+        if (!work.key) continue;
+        // Everything the hand handles grows about what it rests on, a stack of them too: the
+        // point the hand works at (where the object's centre is in the hand) rises as the
+        // height it works at, up to the height of all of them stacked.
+        const Vec3 in_hand = work.key->wrist.inverse() * work.object->pose.position;
+        const auto rise = [&](const Keyframe& k) {
+            const double height = (k.wrist * in_hand).dot(up) - support;
+            return (scale - 1.0) * std::clamp(height, 0.0, stack) * up;
+        };
         const std::array<double, kFingerCount> change =
-            grip_change(*script, side, rise * up, before, after);
+            grip_change(*input.hand(side), side, *work.key, rise(*work.key), before, after);
+        double lowest = kInfinity, highest = -kInfinity;
         for (Keyframe& k : script->keyframes) {
-            k.wrist.position += rise * up;
+            const Vec3 raised = rise(k);
+            lowest = std::min(lowest, raised.dot(up));
+            highest = std::max(highest, raised.dot(up));
+            k.wrist.position += raised;
             for (std::size_t f = 0; f < kFingerCount; ++f) {
                 double& curl = k.articulation.curl[f];
                 if (curl > 0.0) curl = std::clamp(curl + change[f], 0.0, 1.0);
             }
         }
-        for (RecordedSample& sample : script->recorded) {
-            for (Pose& joint : sample.hand.joints) joint.position += rise * up;
-        }
+        what << (what.tellp() > 0 ? "; " : "") << "hand raised " << rise(*work.key).dot(up) * 1000.0
+             << " mm at " << std::setprecision(2) << work.key->t << std::setprecision(1) << " s ("
+             << lowest * 1000.0 << " to " << highest * 1000.0
+             << " mm over the script, as the height it works at grows)";
         for (std::size_t f = 0; f < kFingerCount; ++f) {
             if (change[f] != 0.0) {
-                what << ", " << kFingerNames[f] << " curl " << std::showpos << change[f]
-                     << std::noshowpos;
+                what << ", " << kFingerNames[f] << " curl " << std::showpos << std::setprecision(2)
+                     << change[f] << std::setprecision(1) << std::noshowpos;
             }
         }
     }
