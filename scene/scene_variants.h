@@ -50,11 +50,14 @@ inline constexpr double kStrokeSpeed = 0.5;  // m/s, docs/metrics.md's throw
 Scene sped_up_aiming(const Scene& scene, double speed, std::string& adapted);
 // Every dynamic box, sphere, capsule and cylinder that a hand handles (a ghost joint comes
 // within kHandledDistance of it where it lies at the start) `scale` times as large, as dense,
-// resting where it rested (its lowest point kept). The hands adapt as a person would: raised
-// by as much as the handled objects' centres rose, and in the grip (the keyframe reaching
-// deepest into a handled object) each finger's curl changed so that its tip reaches as deep
-// into that object as before, the change kept wherever the finger is curled. `adapted` says
-// what changed.
+// resting where it rested (its lowest point kept). The hands adapt as a person would. Where a
+// hand works (the keyframe whose fingertips reach deepest into a handled object, or else the
+// one coming closest to one) gives the point it works at: that object's centre, in the
+// wrist's frame. Each keyframe raises the hand by (scale - 1) times that point's height above
+// what the handled objects rest on, up to their heights stacked: at the grip, as much as the
+// object's centre rose; placing on a stack of them, as much as the stack grew. In the grip
+// each finger's curl changes so that its tip reaches as deep into the object as before, the
+// change kept wherever the finger is curled. `adapted` says what changed.
 inline constexpr double kHandledDistance = 0.02;  // m
 Scene resized(const Scene& scene, double scale, std::string& adapted);
 // The final grip made tighter: the four fingers' curl raised to at least `curl` from the
