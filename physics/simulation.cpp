@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "bullet_convert.h"
 #include "collider_shape.h"
 #include "frame_clock.h"
 #include "ghost_filter.h"
@@ -219,6 +220,31 @@ HandSolids Simulation::hand_solids(HandSide side) {
         slot.drawn_model = std::make_unique<PhysicalHand>(side, settings_.drive, slot.ghost);
     }
     return slot.drawn_model->solids(slot.shown.joints, slot.shown.in_contact);
+}
+
+double Simulation::shown_depth(HandSide side) {
+    const HandSolids solids = hand_solids(side);
+    double deepest = 0.0;
+    for (std::size_t i = 0; i < solids.count; ++i) {
+        const HandSolid& solid = solids.parts[i];
+        std::unique_ptr<btConvexInternalShape> shape;
+        switch (solid.kind) {
+            case HandSolid::Kind::Sphere:
+                shape = std::make_unique<btSphereShape>(static_cast<btScalar>(solid.size.x()));
+                break;
+            case HandSolid::Kind::Capsule:
+                shape =
+                    std::make_unique<btCapsuleShapeZ>(static_cast<btScalar>(solid.size.x()),
+                                                      static_cast<btScalar>(2 * solid.size.z()));
+                break;
+            case HandSolid::Kind::Box:
+                shape = std::make_unique<btBoxShape>(to_bt(solid.size));
+                shape->setMargin(0.001f);  // as the palm's; the half extents stay the same
+                break;
+        }
+        deepest = std::max(deepest, world_->depth_in_colliders(*shape, solid.pose));
+    }
+    return deepest;
 }
 
 bool Simulation::state_is_finite() const {

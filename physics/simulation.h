@@ -143,6 +143,13 @@ class Simulation {
     // active). Computed on request: only a caller that draws the hand needs them. Changes no
     // physics.
     HandSolids hand_solids(HandSide side);
+    // How deep the hand as shown (hand_solids) lies in the collider it goes deepest into, m:
+    // what a user sees sink into things. The contact points (last_max_penetration) are taken
+    // before the substep moves the bodies and keep one point of a few per pair, so they can
+    // miss a part pushed deep (a squeezing thumb 20 mm into a cube while they said 3 mm).
+    // Bullet's closest-point queries, on request (a scene run asks each frame); changes no
+    // physics.
+    double shown_depth(HandSide side);
     // Every pose, velocity and drive force of both hands and of every collider is finite
     // (the nonfinite_count of docs/metrics.md counts frames where this is false).
     bool state_is_finite() const;

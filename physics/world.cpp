@@ -400,6 +400,26 @@ void World::for_each_collider_contact(
     }
 }
 
+double World::depth_in_colliders(btCollisionShape& shape, const Pose& pose) const {
+    struct Deepest : btCollisionWorld::ContactResultCallback {
+        double depth = 0.0;
+        bool needsCollision(btBroadphaseProxy* proxy) const override {
+            return role_of(static_cast<const btCollisionObject*>(proxy->m_clientObject)) ==
+                   BodyRole::Collider;
+        }
+        btScalar addSingleResult(btManifoldPoint& point, const btCollisionObjectWrapper*, int, int,
+                                 const btCollisionObjectWrapper*, int, int) override {
+            depth = std::max(depth, -static_cast<double>(point.getDistance()));
+            return 0;
+        }
+    } deepest;
+    btCollisionObject probe;
+    probe.setCollisionShape(&shape);
+    probe.setWorldTransform(to_bt(pose));
+    world_->contactTest(&probe, deepest);
+    return deepest.depth;
+}
+
 void World::mark_touched(ColliderHandle handle, HandSide side) {
     if (Entry* e = find(handle)) e->touched[static_cast<int>(side)] = true;
 }

@@ -13,6 +13,7 @@
 class btBroadphaseInterface;
 class btCollisionDispatcher;
 class btCollisionObject;
+class btCollisionShape;
 class btDefaultCollisionConfiguration;
 class btRigidBody;
 class btSequentialImpulseConstraintSolver;
@@ -69,6 +70,10 @@ class World {
     SpeedCheck step(double h, double fraction);
     // Kinematic targets become the current poses; the next step starts from there.
     void finish_kinematic_motion();
+
+    // How deep a shape placed at `pose` (not in the world) lies in the collider it goes
+    // deepest into, m; 0 in none. Bullet's closest-point queries; changes nothing.
+    double depth_in_colliders(btCollisionShape& shape, const Pose& pose) const;
 
     // Any collider whose bounds come within `margin` of the box [lo, hi].
     bool any_collider_near(const Vec3& lo, const Vec3& hi) const;

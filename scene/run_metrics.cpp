@@ -144,6 +144,7 @@ void RunMetrics::add_body(double t, std::size_t body, const BodyState& state) {
 void RunMetrics::add_frame(const Frame& frame) {
     step_us_.push_back(frame.step_us);
     max_penetration_m_ = std::max(max_penetration_m_, frame.max_penetration_m);
+    max_shown_depth_m_ = std::max(max_shown_depth_m_, frame.max_shown_depth_m);
     max_joint_gap_m_ = std::max(max_joint_gap_m_, frame.max_joint_gap_m);
     max_speed_ = std::max(max_speed_, frame.max_body_speed);
     max_requested_speed_ = std::max(max_requested_speed_, frame.max_requested_speed);
@@ -162,6 +163,7 @@ MetricsSummary RunMetrics::summary() const {
         s.tracking_error_rms_mm = std::sqrt(sq / static_cast<double>(errors_m_.size())) * 1e3;
     s.tracking_error_p99_mm = quantile(errors_m_, 0.99) * 1e3;
     s.max_penetration_mm = max_penetration_m_ * 1e3;
+    s.max_shown_depth_mm = max_shown_depth_m_ * 1e3;
     s.max_joint_gap_mm = max_joint_gap_m_ * 1e3;
     s.step_us_median = quantile(step_us_, 0.5);
     s.step_us_p99 = quantile(step_us_, 0.99);

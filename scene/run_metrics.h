@@ -28,7 +28,8 @@ struct MetricsSummary {
     double tracking_error_rms_mm = 0.0;
     double tracking_error_p99_mm = 0.0;
     double max_penetration_mm = 0.0;
-    double max_joint_gap_mm = 0.0;  // the physical hand's, PhysicalHandState::max_joint_gap
+    double max_shown_depth_mm = 0.0;  // Simulation::shown_depth, at every frame
+    double max_joint_gap_mm = 0.0;    // the physical hand's, PhysicalHandState::max_joint_gap
     double step_us_median = 0.0;
     double step_us_p99 = 0.0;
     double jitter_mm = 0.0;        // physical joints, frame to frame, not in contact
@@ -69,6 +70,7 @@ class RunMetrics {
     struct Frame {
         double step_us = 0.0;
         double max_penetration_m = 0.0;
+        double max_shown_depth_m = 0.0;
         double max_joint_gap_m = 0.0;
         double max_body_speed = 0.0;
         double max_requested_speed = 0.0;
@@ -120,6 +122,7 @@ class RunMetrics {
     std::int64_t jerk_n_ = 0;
     std::vector<double> step_us_;
     double max_penetration_m_ = 0.0;
+    double max_shown_depth_m_ = 0.0;
     double max_joint_gap_m_ = 0.0;
     double max_speed_ = 0.0;
     double max_requested_speed_ = 0.0;

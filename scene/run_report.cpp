@@ -54,6 +54,8 @@ nlohmann::json to_json(const RunResult& r) {
         {"tracking_error_p99_mm", m.tracking_error_p99_mm},
         {"max_penetration_mm",
          through_layer ? nlohmann::json() : nlohmann::json(m.max_penetration_mm)},
+        {"max_shown_depth_mm",
+         through_layer ? nlohmann::json() : nlohmann::json(m.max_shown_depth_mm)},
         {"max_joint_gap_mm", through_layer ? nlohmann::json() : nlohmann::json(m.max_joint_gap_mm)},
         {"step_us_median", m.step_us_median},
         {"step_us_p99", m.step_us_p99},
@@ -92,7 +94,8 @@ std::string summary_line(const RunResult& r) {
         line += buf;
     }
     if (r.path != "layer") {
-        std::snprintf(buf, sizeof buf, "  penetration %.2f mm", r.metrics.max_penetration_mm);
+        std::snprintf(buf, sizeof buf, "  penetration %.2f mm (shown %.2f mm)",
+                      r.metrics.max_penetration_mm, r.metrics.max_shown_depth_mm);
         line += buf;
     }
     if (const auto ratio =

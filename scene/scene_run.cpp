@@ -114,6 +114,8 @@ RunResult run_scene(const Scene& input, const SimulationSettings& settings,
         }
         metrics.add_frame({.step_us = step_us,
                            .max_penetration_m = sim.last_max_penetration(),
+                           .max_shown_depth_m = std::max(sim.shown_depth(HandSide::Left),
+                                                         sim.shown_depth(HandSide::Right)),
                            .max_joint_gap_m = std::max(sim.hand(HandSide::Left).max_joint_gap,
                                                        sim.hand(HandSide::Right).max_joint_gap),
                            .max_body_speed = sim.last_max_body_speed(),

@@ -67,7 +67,8 @@ int main(int argc, char** argv) {
     const VariantOptions variant_options{.seeds = options->repeat};
 
     std::ofstream csv(options->out / "robustness.csv");
-    csv << "scene,family,variant,drive,substeps,success,max_penetration_mm,max_body_speed,"
+    csv << "scene,family,variant,drive,substeps,success,max_penetration_mm,max_shown_depth_mm,"
+           "max_body_speed,"
            "reseats,cause,adapted\n";
     std::vector<std::string> columns;
     std::map<std::string, std::map<std::string, Tally>> tallies;  // column -> family -> tally
@@ -100,8 +101,9 @@ int main(int argc, char** argv) {
                 if (!r.success) failures[column].push_back(v.scene.name + ": " + cause);
                 csv << name << ',' << v.family << ',' << v.name << ',' << drive << ',' << substeps
                     << ',' << (r.success ? "true" : "false") << ',' << r.metrics.max_penetration_mm
-                    << ',' << r.metrics.max_body_speed << ',' << r.guards.reseats << ','
-                    << csv_field(cause) << ',' << csv_field(v.adapted) << '\n';
+                    << ',' << r.metrics.max_shown_depth_mm << ',' << r.metrics.max_body_speed << ','
+                    << r.guards.reseats << ',' << csv_field(cause) << ',' << csv_field(v.adapted)
+                    << '\n';
             }
         }
     }
@@ -127,8 +129,9 @@ int main(int argc, char** argv) {
        << "\n\n";
     for (const std::string& a : adapted) md << "- " << a << '\n';
     md << "\n### Squeeze\n\nsqueeze_penetration_mm (docs/metrics.md): lift_hold with the four "
-          "fingers' final curl raised from 0.3 to 1.0, max_penetration_mm, and whether the cube "
-          "stayed held.\n\n| final curl |";
+          "fingers' final curl raised from 0.3 to 1.0, max_penetration_mm (in brackets "
+          "max_shown_depth_mm, how deep the hand as shown went), and whether the cube stayed "
+          "held.\n\n| final curl |";
     for (const std::string& c : columns) md << ' ' << c << " |";
     md << "\n|---|";
     for (std::size_t i = 0; i < columns.size(); ++i) md << "---|";
@@ -144,7 +147,8 @@ int main(int argc, char** argv) {
                 run.substeps = std::stoi(c.substr(slash + 1));
                 const RunResult r = run_scene(squeezed(lift, curl), run);
                 char cell[64];
-                std::snprintf(cell, sizeof cell, " %.2f mm, %s |", r.metrics.max_penetration_mm,
+                std::snprintf(cell, sizeof cell, " %.2f mm (shown %.2f mm), %s |",
+                              r.metrics.max_penetration_mm, r.metrics.max_shown_depth_mm,
                               r.success ? "held" : "**dropped**");
                 md << cell;
             }

@@ -123,6 +123,44 @@ TEST(Simulation, HandSolidsAreTheBodiesWhereTheJointsAre) {
     }
 }
 
+// The lowest point of a hand body, world y.
+double lowest(const HandSolid& solid) {
+    const Eigen::Matrix3d r = solid.pose.orientation.toRotationMatrix();
+    switch (solid.kind) {
+        case HandSolid::Kind::Sphere:
+            return solid.pose.position.y() - solid.size.x();
+        case HandSolid::Kind::Capsule:
+            return solid.pose.position.y() - std::abs(r(1, 2)) * solid.size.z() - solid.size.x();
+        case HandSolid::Kind::Box:
+            return solid.pose.position.y() - r.row(1).cwiseAbs().dot(solid.size);
+    }
+    return 0.0;
+}
+
+// How deep the hand as shown lies in things is measured on its bodies' shapes: a table put
+// up through the hand as it is shown, its top 6 mm above the hand's lowest point, holds it
+// 6 mm deep; nothing there, nothing deep; an untracked hand, nothing.
+TEST(Simulation, ShownDepthIsHowDeepTheShownHandLiesInAnything) {
+    for (const char* drive : {"bones", "implicit"}) {
+        SCOPED_TRACE(drive);
+        SimulationSettings settings;
+        settings.drive = *find_drive(drive);
+        settings.gating = false;
+        Simulation sim(settings, Vec3(0, -9.81, 0));
+        for (int f = 1; f <= 10; ++f)
+            sim.step_to(f / 90.0, {HandPose{}, right_hand(Vec3(0, 1.2, -0.05), 0.0)});
+        EXPECT_EQ(sim.shown_depth(HandSide::Right), 0.0);
+        const HandSolids solids = sim.hand_solids(HandSide::Right);
+        double bottom = 1e9;
+        for (std::size_t i = 0; i < solids.count; ++i)
+            bottom = std::min(bottom, lowest(solids.parts[i]));
+        sim.add_collider(
+            static_box("table", Vec3(0, bottom + 0.006 - 0.25, 0), Vec3(0.5, 0.25, 0.5)));
+        EXPECT_NEAR(sim.shown_depth(HandSide::Right), 0.006, 2e-4);
+        EXPECT_EQ(sim.shown_depth(HandSide::Left), 0.0);
+    }
+}
+
 TEST(Simulation, ShortDropoutsHoldTheHandAndLongOnesLetGo) {
     Simulation sim(SimulationSettings{}, Vec3(0, -9.81, 0));
     sim.add_collider(static_box("table", Vec3(0, 0.725, -0.4), Vec3(0.4, 0.025, 0.3)));
