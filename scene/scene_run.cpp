@@ -36,11 +36,13 @@ void check_display_timing(const DisplayTiming& display) {
 }
 
 RunResult run_scene(const Scene& scene, const RunOptions& options) {
-    return run_scene(scene, settings_for(options), options.seed, options.display);
+    return run_scene(scene, settings_for(options), options.seed, options.display,
+                     options.measure_shown_depth);
 }
 
 RunResult run_scene(const Scene& input, const SimulationSettings& settings,
-                    std::optional<std::uint64_t> seed, const DisplayTiming& display) {
+                    std::optional<std::uint64_t> seed, const DisplayTiming& display,
+                    bool measure_shown_depth) {
     check_display_timing(display);
     Scene scene = input;
     if (seed) scene.tracking.seed = *seed;
@@ -114,8 +116,10 @@ RunResult run_scene(const Scene& input, const SimulationSettings& settings,
         }
         metrics.add_frame({.step_us = step_us,
                            .max_penetration_m = sim.last_max_penetration(),
-                           .max_shown_depth_m = std::max(sim.shown_depth(HandSide::Left),
-                                                         sim.shown_depth(HandSide::Right)),
+                           .max_shown_depth_m = measure_shown_depth
+                                                    ? std::max(sim.shown_depth(HandSide::Left),
+                                                               sim.shown_depth(HandSide::Right))
+                                                    : 0.0,
                            .max_joint_gap_m = std::max(sim.hand(HandSide::Left).max_joint_gap,
                                                        sim.hand(HandSide::Right).max_joint_gap),
                            .max_body_speed = sim.last_max_body_speed(),

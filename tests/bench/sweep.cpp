@@ -59,6 +59,7 @@ double Row::error() const {
 
 RunOptions options_of(const std::string& drive, int substeps) {
     RunOptions options;
+    options.measure_shown_depth = false;  // timed
     options.drive = drive;
     options.substeps = substeps;
     return options;
