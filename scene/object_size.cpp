@@ -108,6 +108,14 @@ double tip_depth(const HandPose& hand, Joint tip, const std::vector<const Collid
     return hand.radii[index_of(tip)] + deepest;
 }
 
+// How close the hand's skin comes to the collider at any joint (negative: inside), m.
+double skin_gap(const HandPose& hand, const Collider& c) {
+    double gap = kInfinity;
+    for (std::size_t j = 0; j < kJointCount; ++j)
+        gap = std::min(gap, signed_distance(c, hand.joints[j].position) - hand.radii[j]);
+    return gap;
+}
+
 // Closest a ghost joint's skin comes to the collider while the hands' scripts play.
 double closest_approach(const Scene& scene, const Collider& c) {
     double closest = kInfinity;
@@ -121,10 +129,7 @@ double closest_approach(const Scene& scene, const Collider& c) {
         for (double t = from; t <= to + 1e-9; t += kSamplePeriod) {
             const HandPose hand = evaluate_script(*script, side, t);
             if (!hand.active) continue;
-            for (std::size_t j = 0; j < kJointCount; ++j) {
-                closest =
-                    std::min(closest, signed_distance(c, hand.joints[j].position) - hand.radii[j]);
-            }
+            closest = std::min(closest, skin_gap(hand, c));
         }
     }
     return closest;
@@ -151,12 +156,10 @@ WorkPoint work_point(const HandScript& script, HandSide side,
                 deepest = depth;
                 grip = {&k, c};
             }
-            for (std::size_t j = 0; j < kJointCount; ++j) {
-                const double gap = signed_distance(*c, hand.joints[j].position) - hand.radii[j];
-                if (gap < closest) {
-                    closest = gap;
-                    touch = {&k, c};
-                }
+            const double gap = skin_gap(hand, *c);
+            if (gap < closest) {
+                closest = gap;
+                touch = {&k, c};
             }
         }
     }
