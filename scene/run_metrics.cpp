@@ -10,7 +10,7 @@ namespace physhand {
 namespace {
 // docs/metrics.md: spring-back within this long after a release is not tracking lag.
 constexpr double kContactMemory_s = 0.25;
-// docs/metrics.md: a thrown body's speed is taken this long after its last contact.
+// docs/metrics.md: a body is released when this long has passed since its last contact.
 constexpr double kReleaseDelay_s = 0.05;
 // Frame times are whole nanoseconds: "at or after" must not miss a frame by rounding.
 constexpr double kTimeTolerance_s = 1e-6;
@@ -120,7 +120,8 @@ void RunMetrics::add_hand(double t, HandSide side, const HandPose& ghost, const 
     h.have_previous = true;
 }
 
-void RunMetrics::add_body(double t, std::size_t body, const BodyState& state) {
+void RunMetrics::add_body(double t, std::size_t body, const BodyState& state,
+                          double touching_part_speed) {
     if (bodies_.size() <= body) bodies_.resize(body + 1);
     BodyHistory& b = bodies_[body];
     for (int side = 0; side < 2; ++side) touching_now_[side] |= state.touched_by[side];
@@ -129,14 +130,19 @@ void RunMetrics::add_body(double t, std::size_t body, const BodyState& state) {
         b.hand =
             state.touched_by[static_cast<int>(HandSide::Right)] ? HandSide::Right : HandSide::Left;
         b.hand_speed = history_[static_cast<int>(b.hand)].palm_speed.value_or(0.0);
+        b.part_speed = touching_part_speed;
+        b.leaving_speed.reset();
         b.release.reset();
         return;
     }
-    if (!b.last_contact_t || t + kTimeTolerance_s < *b.last_contact_t + kReleaseDelay_s) return;
+    if (!b.last_contact_t) return;
+    if (!b.leaving_speed) b.leaving_speed = state.linear_velocity.norm();
+    if (t + kTimeTolerance_s < *b.last_contact_t + kReleaseDelay_s) return;
     const std::optional<double>& palm = history_[static_cast<int>(b.hand)].palm_speed;
     if (palm) {
-        b.release =
-            Release{body, *b.last_contact_t, b.hand_speed, state.linear_velocity.norm(), *palm};
+        b.release = Release{body,         *b.last_contact_t, b.hand_speed,
+                            b.part_speed, *b.leaving_speed,  state.linear_velocity.norm(),
+                            *palm};
     }
     b.last_contact_t.reset();
 }

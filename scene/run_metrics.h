@@ -10,17 +10,21 @@
 
 namespace physhand {
 
-// A body leaving the hand (docs/metrics.md, release_speed_ratio): its speed 50 ms after its last
-// hand contact and the ghost palm's speed at that moment.
+// A body leaving the hand (docs/metrics.md, release_speed_ratio). Its speed as it leaves
+// (the first frame after its last hand contact) against the fastest hand part that touched it
+// in that last frame; with the ghost palm's speed at the last contact, which tells a throw,
+// and the body's and the ghost palm's 50 ms later.
 struct Release {
-    std::size_t body = 0;     // as numbered in RunMetrics::add_body
-    double time_s = 0.0;      // of the last contact
-    double hand_speed = 0.0;  // the ghost palm's at the last contact
-    double body_speed = 0.0;  // 50 ms later
-    double palm_speed = 0.0;  // the ghost palm's, 50 ms later
-    // None when the palm had stopped by then (a speed under 1 mm/s).
+    std::size_t body = 0;        // as numbered in RunMetrics::add_body
+    double time_s = 0.0;         // of the last contact
+    double hand_speed = 0.0;     // the ghost palm's at the last contact
+    double part_speed = 0.0;     // the fastest touching hand part's, at its contact point
+    double leaving_speed = 0.0;  // the body's in the first frame after the last contact
+    double body_speed = 0.0;     // 50 ms later
+    double palm_speed = 0.0;     // the ghost palm's, 50 ms later
+    // None when the part that let go had stopped (a speed under 1 mm/s).
     std::optional<double> ratio() const {
-        return palm_speed >= 1e-3 ? std::optional(body_speed / palm_speed) : std::nullopt;
+        return part_speed >= 1e-3 ? std::optional(leaving_speed / part_speed) : std::nullopt;
     }
 };
 
@@ -65,7 +69,10 @@ class RunMetrics {
     void add_hand(double t, HandSide side, const HandPose& ghost, const HandPose& physical,
                   const std::array<bool, kJointCount>& in_contact);
     // A dynamic body at the same frame, after the hands; `body` numbers it in this run.
-    void add_body(double t, std::size_t body, const BodyState& state);
+    // `touching_part_speed`: the fastest hand part touching it in this frame, at its contact
+    // point (0 when none).
+    void add_body(double t, std::size_t body, const BodyState& state,
+                  double touching_part_speed = 0.0);
     // What one frame's step measured (Simulation's figures of the frame).
     struct Frame {
         double step_us = 0.0;
@@ -102,6 +109,8 @@ class RunMetrics {
         std::optional<double> last_contact_t;  // unset once its release is measured
         HandSide hand = HandSide::Right;       // that touched it last
         double hand_speed = 0.0;               // its ghost palm's then
+        double part_speed = 0.0;               // the fastest part touching it then
+        std::optional<double> leaving_speed;   // in the first frame after it
         std::optional<Release> release;        // since its last contact
     };
     // Repeated poses and jerk of one hand's frame; `touching`: any of its joints in contact.

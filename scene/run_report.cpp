@@ -33,10 +33,9 @@ nlohmann::json to_json(const RunResult& r) {
     nlohmann::json release;  // null: nothing was thrown
     if (m.throw_release) {
         const Release& t = *m.throw_release;
-        release = {{"body", r.bodies.at(t.body).first},
-                   {"time_s", t.time_s},
-                   {"hand_speed", t.hand_speed},
-                   {"body_speed", t.body_speed},
+        release = {{"body", r.bodies.at(t.body).first}, {"time_s", t.time_s},
+                   {"hand_speed", t.hand_speed},        {"part_speed", t.part_speed},
+                   {"leaving_speed", t.leaving_speed},  {"body_speed", t.body_speed},
                    {"palm_speed", t.palm_speed}};
     }
     // An app sees neither contact distances nor speeds before the limit through the API: the

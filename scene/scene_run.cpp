@@ -35,6 +35,25 @@ void check_display_timing(const DisplayTiming& display) {
         throw std::invalid_argument("frame jitter must be >= 0 and under a third of a frame");
 }
 
+namespace {
+
+// The fastest any hand part touching `collider` moved in the last frame, at its contact point.
+double touching_part_speed(const Simulation& sim, ColliderHandle collider) {
+    double fastest = 0.0;
+    for (const ContactInfo& c : sim.contacts()) {
+        if (c.collider != collider || c.other != 0) continue;
+        const PhysicalHandState& hand = sim.hand(c.hand);
+        const std::size_t j = index_of(c.joint);
+        const Vec3 at_point =
+            hand.linear_velocity[j] +
+            hand.angular_velocity[j].cross(c.point - hand.joints.joints[j].position);
+        fastest = std::max(fastest, at_point.norm());
+    }
+    return fastest;
+}
+
+}  // namespace
+
 RunResult run_scene(const Scene& scene, const RunOptions& options) {
     return run_scene(scene, settings_for(options), options.seed, options.display,
                      options.measure_shown_depth);
@@ -112,7 +131,8 @@ RunResult run_scene(const Scene& input, const SimulationSettings& settings,
         }
         for (std::size_t i = 0, body = 0; i < scene.colliders.size(); ++i) {
             if (scene.colliders[i].motion == Motion::Dynamic)
-                metrics.add_body(t, body++, *sim.body_state(handles[i]));
+                metrics.add_body(t, body++, *sim.body_state(handles[i]),
+                                 touching_part_speed(sim, handles[i]));
         }
         metrics.add_frame({.step_us = step_us,
                            .max_penetration_m = sim.last_max_penetration(),

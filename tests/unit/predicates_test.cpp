@@ -188,8 +188,9 @@ TEST(RunMetrics, JerkOfACubicPathIsItsThirdDerivative) {
     EXPECT_EQ(s.repeated_pose_frames, 0);
 }
 
-// A body's speed 50 ms after its last contact over the ghost palm's speed then
-// (docs/metrics.md); only a release at throwing speed counts as a throw.
+// A body's speed as it leaves the hand over the fastest part that touched it last, the
+// contact counted as the last once 50 ms pass without another (docs/metrics.md); only a
+// release at throwing speed counts as a throw.
 TEST(RunMetrics, ReleaseSpeedRatioOfTheFastestThrow) {
     RunMetrics m;
     const HandPose still = pose_hand(HandSide::Right, Pose{}, HandArticulation{});
@@ -203,19 +204,23 @@ TEST(RunMetrics, ReleaseSpeedRatioOfTheFastestThrow) {
         BodyState cube;
         cube.linear_velocity = cube_velocity;
         cube.touched_by[static_cast<int>(HandSide::Right)] = touched;
-        m.add_body(t, 0, cube);
+        m.add_body(t, 0, cube, touched ? 2.4 : 0.0);  // a fingertip flicking at 2.4 m/s
         m.add_frame({.step_us = 1.0});
     };
-    for (int f = 0; f <= 10; ++f) frame(f, 2.0, Vec3::Zero(), true);     // carried at 2 m/s
-    for (int f = 11; f <= 20; ++f) frame(f, 2.0, Vec3(3, 0, 0), false);  // let go at 0.10 s
+    for (int f = 0; f <= 10; ++f) frame(f, 2.0, Vec3::Zero(), true);  // carried at 2 m/s
+    frame(11, 2.0, Vec3(3, 0, 0), false);                             // let go at 0.10 s
+    for (int f = 12; f <= 20; ++f) frame(f, 2.0, Vec3(2.5, 0, 0), false);
     const MetricsSummary s = m.summary();
     ASSERT_TRUE(s.throw_release);
     EXPECT_EQ(s.throw_release->body, 0u);
     EXPECT_DOUBLE_EQ(s.throw_release->time_s, 0.10);
     EXPECT_NEAR(s.throw_release->hand_speed, 2.0, 1e-9);
-    EXPECT_NEAR(s.throw_release->palm_speed, 2.0, 1e-9);  // at 0.15 s
+    EXPECT_NEAR(s.throw_release->part_speed, 2.4, 1e-9);
+    EXPECT_NEAR(s.throw_release->leaving_speed, 3.0, 1e-9);
+    EXPECT_NEAR(s.throw_release->body_speed, 2.5, 1e-9);  // at 0.15 s
+    EXPECT_NEAR(s.throw_release->palm_speed, 2.0, 1e-9);
     ASSERT_TRUE(s.throw_release->ratio());
-    EXPECT_NEAR(*s.throw_release->ratio(), 1.5, 1e-9);
+    EXPECT_NEAR(*s.throw_release->ratio(), 1.25, 1e-9);
     EXPECT_EQ(s.frames_touching_bodies[static_cast<int>(HandSide::Right)], 11);
 
     RunMetrics placing;  // the same, with the palm at 0.2 m/s: a body set down, not thrown
