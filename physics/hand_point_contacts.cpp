@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "ball_contact.h"
+#include "contact_insertion.h"
 #include "world.h"
 
 namespace physhand {
@@ -61,18 +62,15 @@ void merge_ball_contact(const btManifoldPoint& point, bool hand_first, btScalar 
         return hand_first ? p.m_localPointA : p.m_localPointB;
     };
     const int nearest = manifold.getCacheEntry(point);
-    if (nearest < 0) {
-        manifold.addManifoldPoint(point);
-        return;
+    if (nearest >= 0) {
+        const btManifoldPoint& there = manifold.getContactPoint(nearest);
+        if (there.getDistance() < point.getDistance() - kDeeper &&
+            (on_hand(there) - on_hand(point)).length2() > radius * radius) {
+            manifold.addManifoldPoint(point);
+            return;
+        }
     }
-    const btManifoldPoint& there = manifold.getContactPoint(nearest);
-    const bool keep = there.getDistance() < point.getDistance() - kDeeper &&
-                      (on_hand(there) - on_hand(point)).length2() > radius * radius;
-    if (keep) {
-        manifold.addManifoldPoint(point);
-    } else {
-        manifold.replaceContactPoint(point, nearest);
-    }
+    insert_contact_point(manifold, point);
 }
 
 }  // namespace

@@ -58,6 +58,13 @@ TEST(Robustness, ThePaperTasksSucceedWithTheLeftHand) {
     }
 }
 
+// A user squeezing deep into a held cube (lift_hold's fingers curled to 0.9): the thumb
+// sank 20-24 mm into the cube while friction anchors hid how deep it was (contact_insertion.h).
+TEST(Robustness, ASqueezedGripSinksLessThanHalfAsDeepAsItsAnchorsOnceLetIt) {
+    const RunResult r = run_scene(squeezed(sample_scene("lift_hold"), 0.9), RunOptions{});
+    EXPECT_LT(r.metrics.max_shown_depth_mm, 15.0);
+}
+
 // The throw 1.5 and 1.7 times as fast (wrist up to 4.8 m/s, fingertips over 6 m/s as they
 // open): no finger passes into the projectile as it lets go, and the projectile leaves no
 // faster than the hand part that let it go last (+10 %), nor flies on faster than the palm
