@@ -13,8 +13,8 @@ namespace physhand {
 // thumb squeezed into a held cube slid 20 mm into it while its anchor read 1-2 mm, and
 // nothing pushed it out. Anchors that yield to any deeper point (1-4 mm) show the squeeze as
 // 3-9 mm deep but lose grips that the sunk fingers held (robustness benchmark, bones/1:
-// 62-70 % against 78 %); at 12 mm the benchmark is as before within its spread and the
-// squeeze's shown depth is halved (BENCHMARKS.md).
+// 62-70 % against 78 %); at 12 mm every drive's benchmark is as before within its spread
+// and the squeeze's shown depth is halved or better (BENCHMARKS.md).
 inline constexpr btScalar kAnchorSlack = 0.012f;
 
 // Puts a freshly found point into `manifold` as Bullet does (it takes the place of the

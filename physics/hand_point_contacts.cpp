@@ -20,8 +20,8 @@ bool is_hand(const btCollisionObject& o) {
     return static_cast<BodyRole>(o.getUserIndex()) == BodyRole::Hand;
 }
 
-// A ball at which a hand part meets a surface first: an end of a capsule, or a corner of a
-// box (a point: sharp, as Bullet's box-box and box-plane contacts take it).
+// A ball at which a hand part meets a surface first: an end of a capsule, a corner of a box
+// (a point: sharp, as Bullet's box-box and box-plane contacts take it), or a joint sphere.
 struct Ball {
     btVector3 centre;
     btScalar radius;
@@ -37,6 +37,10 @@ int balls_of(const btCollisionObject& part, std::array<Ball, 8>& out) {
         out[0] = {a, capsule.getRadius()};
         out[1] = {b, capsule.getRadius()};
         return 2;
+    }
+    if (shape.getShapeType() == SPHERE_SHAPE_PROXYTYPE) {
+        out[0] = {t.getOrigin(), static_cast<const btSphereShape&>(shape).getRadius()};
+        return 1;
     }
     if (shape.getShapeType() == BOX_SHAPE_PROXYTYPE) {
         const auto& box = static_cast<const btBoxShape&>(shape);

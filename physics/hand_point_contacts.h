@@ -10,7 +10,9 @@ namespace physhand {
 // a palm box 0.025 mm at one substep per frame in press_table, measured). This gives each
 // end of every finger capsule, and each of the four corners of the palm box nearest a
 // collider, a contact of its own with each convex or plane collider within the hand's
-// contact reach, after collision detection and before the solver.
+// contact reach, after collision detection and before the solver. A joint sphere's contact
+// is found again too, so that a friction anchor does not hide how deep it lies
+// (contact_insertion.h).
 void add_hand_point_contacts(btCollisionDispatcher& dispatcher);
 
 }  // namespace physhand
