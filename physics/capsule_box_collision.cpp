@@ -96,15 +96,9 @@ class CapsuleBoxAlgorithm : public btActivatingCollisionAlgorithm {
             manifold_->getContactBreakingThreshold()) {
             const BallContact c = segment_box_contact(a, b, capsule.getRadius(), box_pose, half);
             // The manifold is (capsule, box): Bullet takes the point on the box and its normal.
-            // It builds the point in a manifold of its own: contact_insertion.h says why.
-            btPersistentManifold built(manifold_->getBody0(), manifold_->getBody1(), 0,
-                                       manifold_->getContactBreakingThreshold(),
-                                       manifold_->getContactProcessingThreshold());
-            result->setPersistentManifold(&built);
-            result->addContactPoint(c.normal, c.on_collider, c.distance);
-            result->setPersistentManifold(manifold_);
-            if (built.getNumContacts() == 1)
-                insert_contact_point(*manifold_, built.getContactPoint(0));
+            if (const auto point =
+                    build_contact_point(*result, *manifold_, c.normal, c.on_collider, c.distance))
+                insert_contact_point(*manifold_, *point);
         }
         if (manifold_->getNumContacts() > 0) result->refreshContactPoints();
     }

@@ -1,8 +1,11 @@
 #pragma once
 
+#include <BulletCollision/NarrowPhaseCollision/btManifoldPoint.h>
 #include <LinearMath/btScalar.h>
 
-class btManifoldPoint;
+#include <optional>
+
+class btManifoldResult;
 class btPersistentManifold;
 
 namespace physhand {
@@ -21,5 +24,14 @@ inline constexpr btScalar kAnchorSlack = 0.012f;
 // nearest point, if any is near enough, else is added), except that a friction anchor does
 // not hide a contact kAnchorSlack deeper.
 void insert_contact_point(btPersistentManifold& manifold, const btManifoldPoint& point);
+
+// The point `result` builds for `manifold`'s pair as Bullet would (friction, restitution,
+// local points), in a manifold of its own so that insert_contact_point decides where it goes;
+// none beyond the manifold's reach. `result` is left writing to `manifold`. Arguments as
+// btManifoldResult::addContactPoint takes them.
+std::optional<btManifoldPoint> build_contact_point(btManifoldResult& result,
+                                                   btPersistentManifold& manifold,
+                                                   const btVector3& normal_on_b,
+                                                   const btVector3& point_on_b, btScalar distance);
 
 }  // namespace physhand

@@ -123,22 +123,15 @@ void add_hand_point_contacts(btCollisionDispatcher& dispatcher) {
                                                   other->getWorldTransform(), -1, -1);
         for (std::size_t k = 0; k < n; ++k) {
             const auto& [c, radius] = found[k];
-            // Bullet builds the point (friction, restitution, local points) in a manifold of
-            // its own, in the real one's order; merge_ball_contact says why not in place.
-            btPersistentManifold built(manifold->getBody0(), manifold->getBody1(), 0, reach,
-                                       manifold->getContactProcessingThreshold());
+            // In the real manifold's order; merge_ball_contact says where the point goes.
             btManifoldResult result(hand_first ? &hand_wrap : &other_wrap,
                                     hand_first ? &other_wrap : &hand_wrap);
-            result.setPersistentManifold(&built);
-            if (hand_first) {
-                result.addContactPoint(c.normal, c.on_collider, c.distance);
-            } else {
-                const btVector3 on_hand = c.on_collider + c.normal * c.distance;
-                result.addContactPoint(-c.normal, on_hand, c.distance);
-            }
-            if (built.getNumContacts() == 1) {
-                merge_ball_contact(built.getContactPoint(0), hand_first, radius, *manifold);
-            }
+            const std::optional<btManifoldPoint> point =
+                hand_first
+                    ? build_contact_point(result, *manifold, c.normal, c.on_collider, c.distance)
+                    : build_contact_point(result, *manifold, -c.normal,
+                                          c.on_collider + c.normal * c.distance, c.distance);
+            if (point) merge_ball_contact(*point, hand_first, radius, *manifold);
         }
     }
 }
