@@ -239,6 +239,12 @@ void PhysicalHand::set_contact_response(bool enabled) {
     }
 }
 
+bool PhysicalHand::overlaps_colliders(const World& world) const {
+    return std::any_of(bodies_.begin(), bodies_.end(), [&](const auto& b) {
+        return world.depth_in_colliders(*b->shape, from_bt(b->rigid->getWorldTransform())) > 0.0;
+    });
+}
+
 Pose PhysicalHand::body_pose(const Body& b, const HandPose& target) const {
     Pose pose = from_bt(b.rigid->getWorldTransform());
     // A sphere's orientation means nothing: it carries its joint turned as the target is.

@@ -45,6 +45,8 @@ class PhysicalHand {
     // While re-seating, bodies pass through colliders until they are clear of them.
     void set_contact_response(bool enabled);
     bool contact_response() const { return contact_response_; }
+    // Whether any body lies inside a collider where it is now.
+    bool overlaps_colliders(const World& world) const;
 
     // Physical joints for the current body poses, using `target` for carried offsets. Each
     // joint's radius is what its body collides with there (a finger's capsule, half the palm

@@ -224,6 +224,10 @@ bool World::set_kinematic_target(ColliderHandle handle, const Pose& pose) {
     if (!e || e->collider.motion != Motion::Kinematic) return false;
     e->kinematic_to = pose;
     e->kinematic_moving = true;
+    const double turn = rotation_between(e->kinematic_from.orientation, pose.orientation).norm();
+    kinematic_travel_ = std::max(kinematic_travel_,
+                                 (pose.position - e->kinematic_from.position).norm() +
+                                     turn * e->body->getCollisionShape()->getAngularMotionDisc());
     return true;
 }
 
@@ -321,6 +325,7 @@ SpeedCheck World::step(double h, double fraction) {
 }
 
 void World::finish_kinematic_motion() {
+    kinematic_travel_ = 0.0;
     for (auto& [handle, e] : colliders_) {
         if (!e->kinematic_moving) continue;
         e->kinematic_from = e->kinematic_to;
@@ -330,16 +335,47 @@ void World::finish_kinematic_motion() {
     }
 }
 
-bool World::any_collider_near(const Vec3& lo, const Vec3& hi) const {
+namespace {
+
+// How far a collider may move in `lookahead_s` as it moves now: a dynamic one at its speed
+// (its spin carrying its furthest point), a kinematic one as far as any goes toward its target
+// this frame, a static or sleeping one not at all.
+double travel_of(const btCollisionObject& o, double lookahead_s, double kinematic_travel) {
+    const btRigidBody* body = btRigidBody::upcast(&o);
+    if (!body) return 0.0;
+    if (body->isKinematicObject()) return kinematic_travel;  // flagged static too: massless
+    if (body->isStaticObject()) return 0.0;
+    if (!body->isActive()) return 0.0;
+    return (body->getLinearVelocity().length() +
+            body->getAngularVelocity().length() *
+                body->getCollisionShape()->getAngularMotionDisc()) *
+           lookahead_s;
+}
+
+}  // namespace
+
+bool World::any_collider_near(const Vec3& lo, const Vec3& hi, double lookahead_s) const {
     struct Near : btBroadphaseAabbCallback {
         Vec3 lo, hi;
+        // 0: whatever the broadphase finds near; else each found collider's own travel in that
+        // time decides whether it comes near.
+        double lookahead_s = 0.0;
+        double kinematic_travel = 0.0;
         bool found = false;
         bool process(const btBroadphaseProxy* proxy) override {
             const auto* o = static_cast<const btCollisionObject*>(proxy->m_clientObject);
             if (role_of(o) != BodyRole::Collider) return true;
             const auto* plane = dynamic_cast<const btStaticPlaneShape*>(o->getCollisionShape());
             if (!plane) {
-                found = true;
+                if (lookahead_s <= 0.0) {
+                    found = true;
+                    return true;
+                }
+                const Vec3 travel = Vec3::Constant(travel_of(*o, lookahead_s, kinematic_travel));
+                const Vec3 a = from_bt(proxy->m_aabbMin) - travel;
+                const Vec3 b = from_bt(proxy->m_aabbMax) + travel;
+                found =
+                    found || ((a.array() <= hi.array()).all() && (b.array() >= lo.array()).all());
                 return true;
             }
             // A plane's bounds are the whole world: test the box's lowest corner instead.
@@ -355,6 +391,19 @@ bool World::any_collider_near(const Vec3& lo, const Vec3& hi) const {
     near.lo = lo;
     near.hi = hi;
     broadphase_->aabbTest(to_bt(lo), to_bt(hi), near);
+    if (near.found || !(lookahead_s > 0.0)) return near.found;
+    // Nothing near now: what moves may come near within the lookahead.
+    double widest = kinematic_travel_;
+    const btAlignedObjectArray<btRigidBody*>& moving = world_->getNonStaticRigidBodies();
+    for (int i = 0; i < moving.size(); ++i) {
+        if (role_of(moving[i]) == BodyRole::Collider)
+            widest = std::max(widest, travel_of(*moving[i], lookahead_s, kinematic_travel_));
+    }
+    if (widest <= 0.0) return false;
+    near.lookahead_s = lookahead_s;
+    near.kinematic_travel = kinematic_travel_;
+    broadphase_->aabbTest(to_bt(lo - Vec3::Constant(widest)), to_bt(hi + Vec3::Constant(widest)),
+                          near);
     return near.found;
 }
 

@@ -75,8 +75,9 @@ class World {
     // deepest into, m; 0 in none. Bullet's closest-point queries; changes nothing.
     double depth_in_colliders(btCollisionShape& shape, const Pose& pose) const;
 
-    // Any collider whose bounds come within `margin` of the box [lo, hi].
-    bool any_collider_near(const Vec3& lo, const Vec3& hi) const;
+    // Any collider whose bounds meet the box [lo, hi], or would within `lookahead_s` moving
+    // as it moves now (a dynamic one at its speed, a kinematic one toward its target).
+    bool any_collider_near(const Vec3& lo, const Vec3& hi, double lookahead_s = 0.0) const;
 
     struct ContactPoint {
         const btCollisionObject* hand_part;
@@ -117,6 +118,8 @@ class World {
     std::unique_ptr<HandWorld> world_;
     std::map<ColliderHandle, std::unique_ptr<Entry>> colliders_;  // ordered: deterministic
     ColliderHandle next_handle_ = 1;
+    // The furthest any kinematic collider moves toward its target this frame, m.
+    double kinematic_travel_ = 0.0;
     int hand_bodies_ = 0;
 };
 

@@ -2,6 +2,7 @@
 
 #include "simulation.h"
 #include "test_scenes.h"
+#include "world.h"
 
 namespace physhand {
 namespace {
@@ -58,6 +59,70 @@ TEST(Gating, AFloorPlaneOnlyCountsWhenTheHandIsNearIt) {
     EXPECT_FALSE(sim.hand(HandSide::Right).simulated);
     sim.step_to(2 / 90.0, right_hand_at(Vec3(0, 0.06, 0), 0.0));
     EXPECT_TRUE(sim.hand(HandSide::Right).simulated);
+}
+
+// A ball thrown at an open hand that sleeps (nothing was near it): the hand must be awake and
+// solid when the ball arrives, whatever the ball crosses in a frame (17 cm at 15 m/s). Before
+// the gate looked ahead, the ball passed through the palm at 15 m/s and went 16 mm into it at
+// 10 m/s (the hand woke inside it and let it through).
+TEST(Gating, AThrownBallWakesTheHandBeforeItArrives) {
+    for (const double speed : {10.0, 15.0}) {
+        for (const Joint aimed : {Joint::Palm, Joint::IndexIntermediate}) {
+            if (aimed == Joint::IndexIntermediate && speed > 10.0) continue;
+            SCOPED_TRACE(std::to_string(speed) + " m/s at " + std::string(joint_name(aimed)));
+            Simulation sim(SimulationSettings{}, Vec3::Zero());
+            const auto ghosts = right_hand_at(Vec3(0, 1, 0), 0.0);
+            sim.step_to(1 / 90.0, ghosts);
+            ASSERT_FALSE(sim.hand(HandSide::Right).simulated);
+            const HandSolids solids = sim.hand_solids(HandSide::Right);
+            const HandSolid& palm = solids.parts[0];
+            const Vec3 normal = palm.pose.orientation * Vec3(0, 1, 0);
+            const Vec3 aim = aimed == Joint::Palm
+                                 ? palm.pose.position
+                                 : sim.hand(HandSide::Right).joints[aimed].position;
+            Collider ball;
+            ball.id = "ball";
+            ball.shape.kind = ShapeKind::Sphere;
+            ball.shape.radius = 0.015;
+            ball.motion = Motion::Dynamic;
+            ball.mass = 0.05;
+            ball.pose.position = aim - normal * 0.12;
+            const ColliderHandle handle = sim.add_collider(ball);
+            sim.teleport(handle, ball.pose, normal * speed, Vec3::Zero());
+            double shown = 0.0, penetration = 0.0;
+            for (int f = 2; f <= 45; ++f) {
+                sim.step_to(f / 90.0, ghosts);
+                shown = std::max(shown, sim.shown_depth(HandSide::Right));
+                penetration = std::max(penetration, sim.last_max_penetration());
+            }
+            EXPECT_LT((sim.body_state(handle)->pose.position - aim).dot(normal), 0.0);  // back
+            EXPECT_LT(shown, 0.005);
+            EXPECT_LT(penetration, 0.005);
+        }
+    }
+}
+
+// What the gate asks the world: a collider that comes near only by moving counts only when
+// asked to look ahead, and only if it moves far enough in that time.
+TEST(Gating, MovingCollidersCountByHowFarTheyMove) {
+    const Vec3 lo(-0.05, -0.05, -0.05), hi(0.05, 0.05, 0.05);
+    World world(World::Settings{Vec3::Zero()});
+    const Collider thrown = testing::dynamic_box("thrown", Vec3(0.3, 0, 0), 0.02, 0.1);
+    const ColliderHandle ball = world.add_collider(thrown);
+    world.teleport(ball, thrown.pose, Vec3(-20, 0, 0), Vec3::Zero());  // 22 cm a frame
+    EXPECT_FALSE(world.any_collider_near(lo, hi));
+    EXPECT_TRUE(world.any_collider_near(lo, hi, 1 / 90.0));
+    world.teleport(ball, thrown.pose, Vec3(-2, 0, 0), Vec3::Zero());  // 2 cm a frame
+    EXPECT_FALSE(world.any_collider_near(lo, hi, 1 / 90.0));
+
+    World paddles(World::Settings{Vec3::Zero()});
+    Collider paddle = testing::static_box("paddle", Vec3(0, 0.4, 0), Vec3(0.1, 0.01, 0.1));
+    paddle.motion = Motion::Kinematic;
+    const ColliderHandle moving = paddles.add_collider(paddle);
+    EXPECT_FALSE(paddles.any_collider_near(lo, hi, 1 / 90.0));                    // standing still
+    paddles.set_kinematic_target(moving, Pose{Vec3(0, 0, 0), Quat::Identity()});  // 40 cm
+    EXPECT_FALSE(paddles.any_collider_near(lo, hi));
+    EXPECT_TRUE(paddles.any_collider_near(lo, hi, 1 / 90.0));
 }
 
 }  // namespace
