@@ -56,20 +56,20 @@ int balls_of(const btCollisionObject& part, std::array<Ball, 8>& out) {
 }
 
 // A ball's point takes the place of the manifold's nearest point, as Bullet's own insertion
-// does, unless that point is deeper and elsewhere on the part (further than the ball's
-// radius): the distance to a convex collider is least at a capsule's end or a box's corner
-// unless the part crosses an edge or a curved surface, whose contact it then keeps beside
-// the balls'.
-void merge_ball_contact(const btManifoldPoint& point, bool hand_first, btScalar radius,
+// does, unless that point is deeper and elsewhere on the ball's part (further than the ball's
+// radius; `part_first`: the part is the manifold's first): the distance to a convex collider
+// is least at a capsule's end or a box's corner unless the part crosses an edge or a curved
+// surface, whose contact it then keeps beside the balls'.
+void merge_ball_contact(const btManifoldPoint& point, bool part_first, btScalar radius,
                         btPersistentManifold& manifold) {
-    const auto on_hand = [hand_first](const btManifoldPoint& p) {
-        return hand_first ? p.m_localPointA : p.m_localPointB;
+    const auto on_part = [part_first](const btManifoldPoint& p) {
+        return part_first ? p.m_localPointA : p.m_localPointB;
     };
     const int nearest = manifold.getCacheEntry(point);
     if (nearest >= 0) {
         const btManifoldPoint& there = manifold.getContactPoint(nearest);
         if (there.getDistance() < point.getDistance() - kDeeper &&
-            (on_hand(there) - on_hand(point)).length2() > radius * radius) {
+            (on_part(there) - on_part(point)).length2() > radius * radius) {
             manifold.addManifoldPoint(point);
             return;
         }
@@ -77,11 +77,44 @@ void merge_ball_contact(const btManifoldPoint& point, bool hand_first, btScalar 
     insert_contact_point(manifold, point);
 }
 
+// The balls of `part` (one of the manifold's pair; `part_first`: its first) against `other`,
+// each merged into `manifold` at most kCornersKept of a box's corners, the nearest.
+void add_ball_contacts(const btCollisionObject& part, const btCollisionObject& other,
+                       bool part_first, btScalar reach, const btCollisionObjectWrapper& part_wrap,
+                       const btCollisionObjectWrapper& other_wrap, btPersistentManifold& manifold) {
+    // A manifold holds four points: a box keeps its four corners nearest the collider.
+    constexpr std::size_t kCornersKept = 4;
+    std::array<Ball, 8> balls;
+    const int count = balls_of(part, balls);
+    std::array<std::pair<BallContact, btScalar>, 8> found;  // with the ball's radius
+    std::size_t n = 0;
+    for (int b = 0; b < count; ++b) {
+        const Ball& ball = balls[static_cast<std::size_t>(b)];
+        const std::optional<BallContact> c = ball_contact(ball.centre, ball.radius, other, reach);
+        if (c && c->distance < reach) found[n++] = {*c, ball.radius};
+    }
+    if (part.getCollisionShape()->getShapeType() == BOX_SHAPE_PROXYTYPE && n > kCornersKept) {
+        std::partial_sort(
+            found.begin(), found.begin() + kCornersKept, found.begin() + n,
+            [](const auto& a, const auto& b) { return a.first.distance < b.first.distance; });
+        n = kCornersKept;
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+        const auto& [c, radius] = found[k];
+        // In the real manifold's order; merge_ball_contact says where the point goes.
+        btManifoldResult result(part_first ? &part_wrap : &other_wrap,
+                                part_first ? &other_wrap : &part_wrap);
+        const std::optional<btManifoldPoint> point =
+            part_first ? build_contact_point(result, manifold, c.normal, c.on_collider, c.distance)
+                       : build_contact_point(result, manifold, -c.normal,
+                                             c.on_collider + c.normal * c.distance, c.distance);
+        if (point) merge_ball_contact(*point, part_first, radius, manifold);
+    }
+}
+
 }  // namespace
 
 void add_hand_point_contacts(btCollisionDispatcher& dispatcher) {
-    // A manifold holds four points: a box keeps its four corners nearest the collider.
-    constexpr std::size_t kCornersKept = 4;
     for (int i = 0; i < dispatcher.getNumManifolds(); ++i) {
         btPersistentManifold* manifold = dispatcher.getManifoldByIndexInternal(i);
         const btCollisionObject* hand = manifold->getBody0();
@@ -99,40 +132,17 @@ void add_hand_point_contacts(btCollisionDispatcher& dispatcher) {
             hand_type == BOX_SHAPE_PROXYTYPE && other_type == BOX_SHAPE_PROXYTYPE;
         if (manifold->getNumContacts() == 0 && !two_boxes) continue;
 
-        std::array<Ball, 8> balls;
-        const int count = balls_of(*hand, balls);
         const btScalar reach = manifold->getContactBreakingThreshold();
-        std::array<std::pair<BallContact, btScalar>, 8> found;  // with the ball's radius
-        std::size_t n = 0;
-        for (int b = 0; b < count; ++b) {
-            const Ball& ball = balls[static_cast<std::size_t>(b)];
-            const std::optional<BallContact> c =
-                ball_contact(ball.centre, ball.radius, *other, reach);
-            if (c && c->distance < reach) found[n++] = {*c, ball.radius};
-        }
-        if (hand_type == BOX_SHAPE_PROXYTYPE && n > kCornersKept) {
-            std::partial_sort(
-                found.begin(), found.begin() + kCornersKept, found.begin() + n,
-                [](const auto& a, const auto& b) { return a.first.distance < b.first.distance; });
-            n = kCornersKept;
-        }
-
         const btCollisionObjectWrapper hand_wrap(nullptr, hand->getCollisionShape(), hand,
                                                  hand->getWorldTransform(), -1, -1);
         const btCollisionObjectWrapper other_wrap(nullptr, other_shape, other,
                                                   other->getWorldTransform(), -1, -1);
-        for (std::size_t k = 0; k < n; ++k) {
-            const auto& [c, radius] = found[k];
-            // In the real manifold's order; merge_ball_contact says where the point goes.
-            btManifoldResult result(hand_first ? &hand_wrap : &other_wrap,
-                                    hand_first ? &other_wrap : &hand_wrap);
-            const std::optional<btManifoldPoint> point =
-                hand_first
-                    ? build_contact_point(result, *manifold, c.normal, c.on_collider, c.distance)
-                    : build_contact_point(result, *manifold, -c.normal,
-                                          c.on_collider + c.normal * c.distance, c.distance);
-            if (point) merge_ball_contact(*point, hand_first, radius, *manifold);
-        }
+        // The hand part's balls against the collider, and for two boxes the collider's
+        // corners against the hand's box as well: a small box falling flat onto the palm
+        // has no corner of the palm within reach, and fell through it at 2 m/s.
+        add_ball_contacts(*hand, *other, hand_first, reach, hand_wrap, other_wrap, *manifold);
+        if (two_boxes)
+            add_ball_contacts(*other, *hand, !hand_first, reach, other_wrap, hand_wrap, *manifold);
     }
 }
 
