@@ -36,6 +36,12 @@ Vec3 impulse_on_first(const btManifoldPoint& pt) {
                    pt.m_lateralFrictionDir2 * pt.m_appliedImpulseLateral2);
 }
 
+// How fast a body's furthest point may move: its speed plus its spin times its reach.
+double travel_speed(const btRigidBody& body) {
+    return body.getLinearVelocity().length() +
+           body.getAngularVelocity().length() * body.getCollisionShape()->getAngularMotionDisc();
+}
+
 }  // namespace
 
 // Bullet's world with two additions for hands: contacts at the ends of each finger capsule
@@ -50,6 +56,11 @@ class HandWorld : public btDiscreteDynamicsWorld {
           max_speed_(max_speed) {}
     // What the limit found in the last substep.
     const SpeedCheck& last_check() const { return last_check_; }
+    // The fastest any awake dynamic collider moves (travel_speed) since the last substep.
+    double fastest_collider() const { return fastest_collider_; }
+    void note_collider_speed(double speed) {
+        fastest_collider_ = std::max(fastest_collider_, speed);
+    }
     // Only contact events need approach speeds.
     void set_measure_approach(bool measure) { measure_approach_ = measure; }
     // How fast a pair approached before the last substep's solver (0 when not measured).
@@ -67,10 +78,13 @@ class HandWorld : public btDiscreteDynamicsWorld {
     }
     void integrateTransforms(btScalar h) override {
         last_check_ = {};
+        fastest_collider_ = 0.0;
         for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i) {
             btRigidBody& body = *m_nonStaticRigidBodies[i];
-            if (!body.isStaticOrKinematicObject() && body.isActive())
-                last_check_.add(limit_speeds(body, max_speed_));
+            if (body.isStaticOrKinematicObject() || !body.isActive()) continue;
+            last_check_.add(limit_speeds(body, max_speed_));
+            if (role_of(&body) == BodyRole::Collider)
+                fastest_collider_ = std::max(fastest_collider_, travel_speed(body));
         }
         btDiscreteDynamicsWorld::integrateTransforms(h);
     }
@@ -103,6 +117,7 @@ class HandWorld : public btDiscreteDynamicsWorld {
     btCollisionDispatcher& dispatcher_;
     double max_speed_;
     SpeedCheck last_check_;
+    double fastest_collider_ = 0.0;
     std::unordered_map<const btPersistentManifold*, double> approach_speed_;
     bool measure_approach_ = false;
 };
@@ -246,6 +261,7 @@ bool World::teleport(ColliderHandle handle, const Pose& pose, const Vec3& linear
         // step's state into NaN (found by fuzzing the extension, tests/fuzz).
         limit_speeds(*body, settings_.max_body_speed);
         body->activate(true);
+        world_->note_collider_speed(travel_speed(*body));
     }
     e->kinematic_from = e->kinematic_to = pose;
     e->kinematic_moving = false;
@@ -344,12 +360,8 @@ double travel_of(const btCollisionObject& o, double lookahead_s, double kinemati
     const btRigidBody* body = btRigidBody::upcast(&o);
     if (!body) return 0.0;
     if (body->isKinematicObject()) return kinematic_travel;  // flagged static too: massless
-    if (body->isStaticObject()) return 0.0;
-    if (!body->isActive()) return 0.0;
-    return (body->getLinearVelocity().length() +
-            body->getAngularVelocity().length() *
-                body->getCollisionShape()->getAngularMotionDisc()) *
-           lookahead_s;
+    if (body->isStaticObject() || !body->isActive()) return 0.0;
+    return travel_speed(*body) * lookahead_s;
 }
 
 }  // namespace
@@ -393,12 +405,7 @@ bool World::any_collider_near(const Vec3& lo, const Vec3& hi, double lookahead_s
     broadphase_->aabbTest(to_bt(lo), to_bt(hi), near);
     if (near.found || !(lookahead_s > 0.0)) return near.found;
     // Nothing near now: what moves may come near within the lookahead.
-    double widest = kinematic_travel_;
-    const btAlignedObjectArray<btRigidBody*>& moving = world_->getNonStaticRigidBodies();
-    for (int i = 0; i < moving.size(); ++i) {
-        if (role_of(moving[i]) == BodyRole::Collider)
-            widest = std::max(widest, travel_of(*moving[i], lookahead_s, kinematic_travel_));
-    }
+    const double widest = std::max(kinematic_travel_, world_->fastest_collider() * lookahead_s);
     if (widest <= 0.0) return false;
     near.lookahead_s = lookahead_s;
     near.kinematic_travel = kinematic_travel_;
