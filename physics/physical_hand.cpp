@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "bullet_convert.h"
+#include "speed_limit.h"
 #include "world.h"
 
 namespace physhand {
@@ -336,14 +337,7 @@ const std::vector<Joint>& PhysicalHand::carried_joints(int body) const {
 
 double PhysicalHand::max_point_speed() const {
     double fastest = 0.0;
-    for (const auto& b : bodies_) {
-        btVector3 centre;
-        btScalar radius;
-        b->shape->getBoundingSphere(centre, radius);
-        const btRigidBody& r = *b->rigid;
-        fastest = std::max(fastest, static_cast<double>(r.getLinearVelocity().length() +
-                                                        r.getAngularVelocity().length() * radius));
-    }
+    for (const auto& b : bodies_) fastest = std::max(fastest, physhand::max_point_speed(*b->rigid));
     return fastest;
 }
 

@@ -12,6 +12,11 @@ namespace {
 constexpr double kLimitRounding = 1e-5;  // a hundred times float's relative precision
 }  // namespace
 
+double max_point_speed(const btRigidBody& body) {
+    return body.getLinearVelocity().length() +
+           body.getAngularVelocity().length() * body.getCollisionShape()->getAngularMotionDisc();
+}
+
 void SpeedCheck::add(const SpeedCheck& other) {
     clamped += other.clamped;
     requested = std::max(requested, other.requested);

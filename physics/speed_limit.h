@@ -16,6 +16,10 @@ struct SpeedCheck {
     void add(const SpeedCheck& other);
 };
 
+// The fastest any point of a body moves: its centre's speed plus its spin times its reach
+// (the shape's bounding sphere about its centre).
+double max_point_speed(const btRigidBody& body);
+
 // Scales the body's linear speed down to `max_linear` and its angular speed to
 // kMaxAngularSpeed, a non-finite one to zero, and reports what it found.
 SpeedCheck limit_speeds(btRigidBody& body, double max_linear);

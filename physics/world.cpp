@@ -36,12 +36,6 @@ Vec3 impulse_on_first(const btManifoldPoint& pt) {
                    pt.m_lateralFrictionDir2 * pt.m_appliedImpulseLateral2);
 }
 
-// How fast a body's furthest point may move: its speed plus its spin times its reach.
-double travel_speed(const btRigidBody& body) {
-    return body.getLinearVelocity().length() +
-           body.getAngularVelocity().length() * body.getCollisionShape()->getAngularMotionDisc();
-}
-
 }  // namespace
 
 // Bullet's world with two additions for hands: contacts at the ends of each finger capsule
@@ -56,7 +50,7 @@ class HandWorld : public btDiscreteDynamicsWorld {
           max_speed_(max_speed) {}
     // What the limit found in the last substep.
     const SpeedCheck& last_check() const { return last_check_; }
-    // The fastest any awake dynamic collider moves (travel_speed) since the last substep.
+    // The fastest any awake dynamic collider moves (max_point_speed) since the last substep.
     double fastest_collider() const { return fastest_collider_; }
     void note_collider_speed(double speed) {
         fastest_collider_ = std::max(fastest_collider_, speed);
@@ -84,7 +78,7 @@ class HandWorld : public btDiscreteDynamicsWorld {
             if (body.isStaticOrKinematicObject() || !body.isActive()) continue;
             last_check_.add(limit_speeds(body, max_speed_));
             if (role_of(&body) == BodyRole::Collider)
-                fastest_collider_ = std::max(fastest_collider_, travel_speed(body));
+                fastest_collider_ = std::max(fastest_collider_, max_point_speed(body));
         }
         btDiscreteDynamicsWorld::integrateTransforms(h);
     }
@@ -261,7 +255,7 @@ bool World::teleport(ColliderHandle handle, const Pose& pose, const Vec3& linear
         // step's state into NaN (found by fuzzing the extension, tests/fuzz).
         limit_speeds(*body, settings_.max_body_speed);
         body->activate(true);
-        world_->note_collider_speed(travel_speed(*body));
+        world_->note_collider_speed(max_point_speed(*body));
     }
     e->kinematic_from = e->kinematic_to = pose;
     e->kinematic_moving = false;
@@ -361,7 +355,7 @@ double travel_of(const btCollisionObject& o, double lookahead_s, double kinemati
     if (!body) return 0.0;
     if (body->isKinematicObject()) return kinematic_travel;  // flagged static too: massless
     if (body->isStaticObject() || !body->isActive()) return 0.0;
-    return travel_speed(*body) * lookahead_s;
+    return max_point_speed(*body) * lookahead_s;
 }
 
 }  // namespace
