@@ -47,6 +47,9 @@ struct PhysicalHand::Body {
     // In the last substep: touched a static or kinematic collider, or a dynamic one.
     bool touching_fixed = false;
     bool touching_movable = false;
+    bool touching_kinematic = false;
+    // The sum of the static colliders' contact normals (toward the body) in the last substep.
+    Vec3 static_normal = Vec3::Zero();
 };
 
 PhysicalHand::PhysicalHand(HandSide side, const DriveSettings& drive, const HandPose& source)
@@ -197,7 +200,8 @@ void PhysicalHand::drive(const HandPose& goal_pose, const HandPose& previous_tar
         const Pose now = target_of(*b, target);
         const LinearState body{from_bt(r.getCenterOfMassPosition()),
                                from_bt(r.getLinearVelocity())};
-        const LinearState aim{goal.position, (now.position - before.position) / frame_dt};
+        const LinearState aim{resting_aim(*b, body.position, goal.position),
+                              (now.position - before.position) / frame_dt};
         const Vec3 force = drive_force(drive_, b->mass, body, aim, h);
         r.applyCentralForce(to_bt(force));
         b->last_force = force.norm();
@@ -221,13 +225,30 @@ void PhysicalHand::drive(const HandPose& goal_pose, const HandPose& previous_tar
     }
 }
 
-void PhysicalHand::clear_touches() {
-    for (auto& b : bodies_) b->touching_fixed = b->touching_movable = false;
+Vec3 PhysicalHand::resting_aim(const Body& b, const Vec3& position, const Vec3& goal) const {
+    // Algorithm 1 follows the ghost as it is. A kinematic collider may be an app's own object
+    // that the hand grips (docs/extension.md's coupling recipe), gripped as a dynamic one.
+    if (drive_.law == DriveLaw::Explicit || b.touching_movable || b.touching_kinematic) return goal;
+    // Contacts on opposite sides (a finger wedged in a gap) give no one direction to stop at.
+    const double agreement = b.static_normal.norm();
+    if (agreement < 0.5) return goal;
+    const Vec3 n = b.static_normal / agreement;
+    const double into = (position - goal).dot(n);
+    return into > kRestingPressDepth ? Vec3(goal + (into - kRestingPressDepth) * n) : goal;
 }
 
-void PhysicalHand::note_touch(int body, bool movable) {
+void PhysicalHand::clear_touches() {
+    for (auto& b : bodies_) {
+        b->touching_fixed = b->touching_movable = b->touching_kinematic = false;
+        b->static_normal = Vec3::Zero();
+    }
+}
+
+void PhysicalHand::note_touch(int body, Motion motion, const Vec3& normal) {
     Body& b = *bodies_[static_cast<std::size_t>(body)];
-    (movable ? b.touching_movable : b.touching_fixed) = true;
+    (motion == Motion::Dynamic ? b.touching_movable : b.touching_fixed) = true;
+    if (motion == Motion::Kinematic) b.touching_kinematic = true;
+    if (motion == Motion::Static) b.static_normal += normal;
 }
 
 void PhysicalHand::set_contact_response(bool enabled) {

@@ -554,7 +554,7 @@ void Simulation::collect_contacts(ContactIndex& contact_index, ColliderIndex& co
         if (c.distance > kTouchDistance && c.impulse <= 0.0) return;
         if (!slot.body->contact_response()) return;
         last_max_penetration_ = std::max(last_max_penetration_, -c.distance);
-        slot.body->note_touch(body, c.collider_dynamic);
+        slot.body->note_touch(body, c.collider_motion, c.normal);
         for (Joint j : slot.body->carried_joints(body)) slot.state.in_contact[index_of(j)] = true;
         world_->mark_touched(c.collider, slot.side);
         const auto key = std::make_tuple(side, body, c.collider);

@@ -28,6 +28,12 @@ BodyRole role_of(const btCollisionObject* o) {
     return static_cast<BodyRole>(o->getUserIndex());
 }
 
+// Kinematic bodies are flagged static as well (massless to the solver).
+Motion motion_of(const btCollisionObject& o) {
+    if (o.isKinematicObject()) return Motion::Kinematic;
+    return o.isStaticObject() ? Motion::Static : Motion::Dynamic;
+}
+
 // What the last solve gave a contact's first body: the solver pushes it along the normal
 // and the two friction directions.
 Vec3 impulse_on_first(const btManifoldPoint& pt) {
@@ -425,8 +431,8 @@ void World::for_each_hand_contact(const std::function<void(const ContactPoint&)>
                 from_bt(swapped ? pt.getPositionWorldOnA() : pt.getPositionWorldOnB());
             const Vec3 impulse_on_collider = impulse_on_first(pt) * (swapped ? 1.0 : -1.0);
             visit({a, static_cast<ColliderHandle>(b->getUserIndex2()), pt.getDistance(),
-                   pt.getAppliedImpulse(), !b->isStaticOrKinematicObject(), point, normal,
-                   impulse_on_collider, from_bt(b->getWorldTransform().getOrigin()), approach});
+                   pt.getAppliedImpulse(), motion_of(*b), point, normal, impulse_on_collider,
+                   from_bt(b->getWorldTransform().getOrigin()), approach});
         }
     }
 }
@@ -442,9 +448,9 @@ void World::for_each_collider_contact(
         for (int p = 0; p < m->getNumContacts(); ++p) {
             const btManifoldPoint& pt = m->getContactPoint(p);
             visit({nullptr, static_cast<ColliderHandle>(a->getUserIndex2()), pt.getDistance(),
-                   pt.getAppliedImpulse(), !a->isStaticOrKinematicObject(),
-                   from_bt(pt.getPositionWorldOnA()), -from_bt(pt.m_normalWorldOnB),
-                   impulse_on_first(pt), from_bt(a->getWorldTransform().getOrigin()), approach},
+                   pt.getAppliedImpulse(), motion_of(*a), from_bt(pt.getPositionWorldOnA()),
+                   -from_bt(pt.m_normalWorldOnB), impulse_on_first(pt),
+                   from_bt(a->getWorldTransform().getOrigin()), approach},
                   static_cast<ColliderHandle>(b->getUserIndex2()));
         }
     }

@@ -84,7 +84,7 @@ class World {
         ColliderHandle collider;
         double distance;  // < 0: penetrating
         double impulse;
-        bool collider_dynamic;     // the hand can move it (static and kinematic ones it cannot)
+        Motion collider_motion;    // the hand can move a dynamic one only
         Vec3 point;                // on the collider's surface, world frame
         Vec3 normal;               // from the collider toward the hand part
         Vec3 impulse_on_collider;  // normal and friction, N·s
