@@ -39,10 +39,9 @@ Vec3 angular_velocity_between(const Quat& from, const Quat& to, double dt) {
 struct PhysicalHand::Body {
     Joint anchor;
     Pose offset;  // body frame in the anchor joint's frame
-    // A bone's joint with the body before it (the palm for a finger's first bone): that body's
-    // index, and where its end at the joint lies in its frame, as built.
-    int parent = -1;
-    Vec3 end_in_parent = Vec3::Zero();
+    // A bone body's joint with the body before it: where that body ends there, in its frame,
+    // as built.
+    std::optional<Vec3> end_in_parent;
     std::vector<Joint> carried;
     double mass;
     std::unique_ptr<btCollisionShape> shape;
@@ -59,10 +58,9 @@ struct PhysicalHand::Body {
 PhysicalHand::PhysicalHand(HandSide side, const DriveSettings& drive, const HandPose& source)
     : side_(side), drive_(drive) {
     auto add = [&](Joint anchor, const Pose& offset, std::vector<Joint> carried,
-                   std::unique_ptr<btCollisionShape> shape, double mass, int parent = -1) {
+                   std::unique_ptr<btCollisionShape> shape, double mass) {
         auto b = std::make_unique<Body>();
         b->anchor = anchor;
-        b->parent = parent;
         b->offset = offset;
         b->carried = std::move(carried);
         b->mass = mass;
@@ -112,7 +110,6 @@ PhysicalHand::PhysicalHand(HandSide side, const DriveSettings& drive, const Hand
         // A capsule per bone, from its anchor joint to the next; the last carries the tip.
         for (Joint first : kFingerFirstBone) {
             for (int bone = 0; bone < 3; ++bone) {
-                const int parent = bone == 0 ? 0 : static_cast<int>(bodies_.size()) - 1;
                 const Joint a = static_cast<Joint>(index_of(first) + bone);
                 const Joint b = next_joint(a);
                 const Vec3 local = source[a].inverse() * source[b].position;
@@ -126,7 +123,7 @@ PhysicalHand::PhysicalHand(HandSide side, const DriveSettings& drive, const Hand
                 add(a, Pose{local / 2, along}, carried,
                     std::make_unique<btCapsuleShapeZ>(static_cast<btScalar>(radius),
                                                       static_cast<btScalar>(length)),
-                    kBoneMass, parent);
+                    kBoneMass);
             }
         }
     }
@@ -155,9 +152,12 @@ PhysicalHand::PhysicalHand(HandSide side, const DriveSettings& drive, const Hand
         r.setCcdSweptSphereRadius(static_cast<btScalar>(inner * 0.8));
         r.setUserIndex(static_cast<int>(BodyRole::Hand));
         r.setUserIndex2(index_base | static_cast<int>(i));
-        if (b.parent < 0) continue;
-        const Body& parent = *bodies_[static_cast<std::size_t>(b.parent)];
-        b.end_in_parent = target_of(parent, source).inverse() * source[b.anchor].position;
+        const std::optional<Joint> before = joint_parent(b.anchor);
+        if (drive.body_model != BodyModel::BoneCapsules || !before) continue;
+        const Body& parent = *bodies_[static_cast<std::size_t>(body_of_joint_[index_of(*before)])];
+        if (&parent != &b) {
+            b.end_in_parent = target_of(parent, source).inverse() * source[b.anchor].position;
+        }
     }
 }
 
@@ -312,25 +312,20 @@ void PhysicalHand::read(const HandPose& target, PhysicalHandState& out) const {
         out.linear_velocity[j] = from_bt(r.getLinearVelocity()) +
                                  w.cross(joint.position - from_bt(r.getCenterOfMassPosition()));
         out.drive_force[j] = b.last_force;
-        if (b.parent >= 0 && b.anchor == joint_id) {
-            // Where the bone before this one ends, as built, against where this one starts:
-            // the bodies' own ends, which no ghost's bone length moves.
-            const Vec3 end =
-                from_bt(bodies_[static_cast<std::size_t>(b.parent)]->rigid->getWorldTransform()) *
-                b.end_in_parent;
-            out.max_joint_gap = std::max(
-                out.max_joint_gap,
-                (end - from_bt(r.getWorldTransform()) * b.offset.inverse().position).norm());
-            continue;
-        }
-        // Where the joint before this one places it, against its own sphere.
         const std::optional<Joint> parent = joint_parent(joint_id);
         if (!parent) continue;
         const int parent_body = body_of_joint_[index_of(*parent)];
         if (parent_body == body_of_joint_[j]) continue;
-        const Pose end =
-            joint_on(*bodies_[static_cast<std::size_t>(parent_body)], joint_id, target);
-        out.max_joint_gap = std::max(out.max_joint_gap, (end.position - joint.position).norm());
+        const Body& p = *bodies_[static_cast<std::size_t>(parent_body)];
+        // A bone body's end as built, which no ghost's bone length moves, against where this
+        // bone starts; a sphere: the joint as the sphere before it places it.
+        const Vec3 end = b.end_in_parent
+                             ? Vec3(from_bt(p.rigid->getWorldTransform()) * *b.end_in_parent)
+                             : joint_on(p, joint_id, target).position;
+        const Vec3 start = b.end_in_parent
+                               ? Vec3(from_bt(r.getWorldTransform()) * b.offset.inverse().position)
+                               : joint.position;
+        out.max_joint_gap = std::max(out.max_joint_gap, (end - start).norm());
     }
 }
 
