@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "bullet_convert.h"
 #include "speed_limit.h"
@@ -34,6 +35,14 @@ Vec3 angular_velocity_between(const Quat& from, const Quat& to, double dt) {
     return rotation_between(from, to) / dt;
 }
 
+// The contacts' common direction (the mean of their normals), or nothing where contacts on
+// opposite sides (a finger wedged in a gap) give no one direction.
+std::optional<Vec3> common_direction(const Vec3& normal_sum) {
+    const double agreement = normal_sum.norm();
+    if (agreement < 0.5) return std::nullopt;
+    return Vec3(normal_sum / agreement);
+}
+
 }  // namespace
 
 struct PhysicalHand::Body {
@@ -51,8 +60,16 @@ struct PhysicalHand::Body {
     bool touching_fixed = false;
     bool touching_movable = false;
     bool touching_kinematic = false;
-    // The sum of the static colliders' contact normals (toward the body) in the last substep.
+    // The sums of the static and of the movable colliders' contact normals (toward the body)
+    // in the last substep.
     Vec3 static_normal = Vec3::Zero();
+    Vec3 movable_normal = Vec3::Zero();
+    // It held a movable collider it touched (note_touch's `holds`).
+    bool holding = false;
+    // A movable collider lay within kLonePressGive of it, untouched.
+    bool near_movable = false;
+    // How far the nearest movable collider it touched or neared lay from it (0: touching).
+    double movable_gap = kLonePressGive;
 };
 
 PhysicalHand::PhysicalHand(HandSide side, const DriveSettings& drive, const HandPose& source)
@@ -209,7 +226,7 @@ void PhysicalHand::drive(const HandPose& goal_pose, const HandPose& previous_tar
         const Pose now = target_of(*b, target);
         const LinearState body{from_bt(r.getCenterOfMassPosition()),
                                from_bt(r.getLinearVelocity())};
-        const LinearState aim{resting_aim(*b, body.position, goal.position),
+        const LinearState aim{contact_aim(*b, body.position, goal.position),
                               (now.position - before.position) / frame_dt};
         const Vec3 force = drive_force(drive_, b->mass, body, aim, h);
         r.applyCentralForce(to_bt(force));
@@ -234,30 +251,50 @@ void PhysicalHand::drive(const HandPose& goal_pose, const HandPose& previous_tar
     }
 }
 
-Vec3 PhysicalHand::resting_aim(const Body& b, const Vec3& position, const Vec3& goal) const {
-    // Algorithm 1 follows the ghost as it is. A kinematic collider may be an app's own object
-    // that the hand grips (docs/extension.md's coupling recipe), gripped as a dynamic one.
-    if (drive_.law == DriveLaw::Explicit || b.touching_movable || b.touching_kinematic) return goal;
-    // Contacts on opposite sides (a finger wedged in a gap) give no one direction to stop at.
-    const double agreement = b.static_normal.norm();
-    if (agreement < 0.5) return goal;
-    const Vec3 n = b.static_normal / agreement;
-    const double into = (position - goal).dot(n);
-    return into > kRestingPressDepth ? Vec3(goal + (into - kRestingPressDepth) * n) : goal;
+Vec3 PhysicalHand::contact_aim(const Body& b, const Vec3& position, const Vec3& goal) const {
+    // Algorithm 1 follows the ghost as it is.
+    if (drive_.law == DriveLaw::Explicit) return goal;
+    // A kinematic collider may be an app's own object that the hand grips (docs/extension.md's
+    // coupling recipe): movable, as a dynamic one.
+    if (b.touching_movable || b.touching_kinematic || b.near_movable) {
+        if (b.holding) return goal;
+        const std::optional<Vec3> n = common_direction(b.movable_normal);
+        if (!n) return goal;
+        // How deep the goal lies in what the body touches or nears.
+        const double into = (position - goal).dot(*n) - b.movable_gap;
+        return into > 0.0 ? Vec3(goal + std::min(into, kLonePressGive) * *n) : goal;
+    }
+    const std::optional<Vec3> n = common_direction(b.static_normal);
+    if (!n) return goal;
+    const double into = (position - goal).dot(*n);
+    return into > kRestingPressDepth ? Vec3(goal + (into - kRestingPressDepth) * *n) : goal;
 }
 
 void PhysicalHand::clear_touches() {
     for (auto& b : bodies_) {
         b->touching_fixed = b->touching_movable = b->touching_kinematic = false;
-        b->static_normal = Vec3::Zero();
+        b->static_normal = b->movable_normal = Vec3::Zero();
+        b->holding = b->near_movable = false;
+        b->movable_gap = kLonePressGive;
     }
 }
 
-void PhysicalHand::note_touch(int body, Motion motion, const Vec3& normal) {
+void PhysicalHand::note_near(int body, const Vec3& normal, double gap, bool holds) {
+    Body& b = *bodies_[static_cast<std::size_t>(body)];
+    b.near_movable = true;
+    b.movable_gap = std::min(b.movable_gap, gap);
+    b.movable_normal += normal;
+    if (holds) b.holding = true;
+}
+
+void PhysicalHand::note_touch(int body, Motion motion, const Vec3& normal, bool holds) {
     Body& b = *bodies_[static_cast<std::size_t>(body)];
     (motion == Motion::Dynamic ? b.touching_movable : b.touching_fixed) = true;
     if (motion == Motion::Kinematic) b.touching_kinematic = true;
-    if (motion == Motion::Static) b.static_normal += normal;
+    (motion == Motion::Static ? b.static_normal : b.movable_normal) += normal;
+    if (motion == Motion::Static) return;
+    b.movable_gap = 0.0;
+    if (holds) b.holding = true;
 }
 
 void PhysicalHand::set_contact_response(bool enabled) {

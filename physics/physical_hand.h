@@ -38,11 +38,17 @@ class PhysicalHand {
     // the substep), `previous_target`/`target` giving the target's velocity over the frame.
     void drive(const HandPose& goal, const HandPose& previous_target, const HandPose& target,
                double frame_dt, double h);
-    // What bodies touched in the last substep (`normal`: from the collider toward the body):
-    // a body that rests on what it cannot move turns more softly, and one that rests on static
-    // colliders alone presses no deeper than kRestingPressDepth into them.
+    // What bodies touched in the last substep (`normal`: from the collider toward the body;
+    // `holds`: on a movable collider, another hand part touches it from the opposite side or
+    // it rests on this body): a body that rests on what it cannot move turns more softly, one
+    // that rests on static colliders alone presses no deeper than kRestingPressDepth into
+    // them, and one that presses movable colliders without holding them gives up
+    // kLonePressGive of its reach.
     void clear_touches();
-    void note_touch(int body, Motion motion, const Vec3& normal);
+    void note_touch(int body, Motion motion, const Vec3& normal, bool holds);
+    // A movable collider `gap` from a body (under kLonePressGive), not touching it: the body
+    // gives as if it touched it, so that it does not press in again each time it comes clear.
+    void note_near(int body, const Vec3& normal, double gap, bool holds);
     // While re-seating, bodies pass through colliders until they are clear of them.
     void set_contact_response(bool enabled);
     bool contact_response() const { return contact_response_; }
@@ -76,8 +82,9 @@ class PhysicalHand {
     struct Body;
     Pose target_of(const Body& body, const HandPose& target) const;
     // Where the drive pulls a body at `position` whose target is `goal`: for a body resting on
-    // static colliders alone, no further into them than kRestingPressDepth.
-    Vec3 resting_aim(const Body& body, const Vec3& position, const Vec3& goal) const;
+    // static colliders alone, no further into them than kRestingPressDepth; for one pressing
+    // movable colliders without holding them, kLonePressGive less far into them.
+    Vec3 contact_aim(const Body& body, const Vec3& position, const Vec3& goal) const;
     Pose body_pose(const Body& body, const HandPose& target) const;
     // Joint `j` as `body` places it, keeping its offset in `target` from the body's anchor.
     Pose joint_on(const Body& body, Joint j, const HandPose& target) const;

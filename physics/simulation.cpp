@@ -23,6 +23,11 @@ namespace {
 
 // A contact point within this distance counts as touching (surfaces meet, margins aside).
 constexpr double kTouchDistance = 0.0005;
+// Two hand parts grip what they both touch where their contact normals are more than 107
+// degrees apart; an object bears on a part whose normal (toward the part) points within 60
+// degrees of straight down.
+constexpr double kOpposed = -0.3;
+constexpr double kBearsWeight = -0.5;
 // A gated hand wakes when a collider comes within gate_reach, and sleeps again only when
 // none is within this multiple of it, so it does not flicker at the boundary.
 constexpr double kGateHysteresis = 1.5;
@@ -544,6 +549,7 @@ void Simulation::collect_contacts(ContactIndex& contact_index, ColliderIndex& co
     for (auto& slot : hands_) {
         if (slot->body) slot->body->clear_touches();
     }
+    touches_.clear();
     world_->for_each_hand_contact([&](const World::ContactPoint& c) {
         const int tag = c.hand_part->getUserIndex2();
         const int side = tag >> 8;
@@ -551,10 +557,17 @@ void Simulation::collect_contacts(ContactIndex& contact_index, ColliderIndex& co
         const int body = slot.body ? slot.body->body_index(c.hand_part) : -1;
         if (body < 0) return;
         if (c.distance < 0) penetrating[static_cast<std::size_t>(side)] = true;
-        if (c.distance > kTouchDistance && c.impulse <= 0.0) return;
         if (!slot.body->contact_response()) return;
+        if (c.distance > kTouchDistance && c.impulse <= 0.0) {
+            if (c.collider_motion != Motion::Static && c.distance < kLonePressGive) {
+                touches_.push_back({slot.body.get(), body, c.collider_motion, c.normal, c.collider,
+                                    false, c.distance});
+            }
+            return;
+        }
         last_max_penetration_ = std::max(last_max_penetration_, -c.distance);
-        slot.body->note_touch(body, c.collider_motion, c.normal);
+        touches_.push_back(
+            {slot.body.get(), body, c.collider_motion, c.normal, c.collider, true, 0.0});
         for (Joint j : slot.body->carried_joints(body)) slot.state.in_contact[index_of(j)] = true;
         world_->mark_touched(c.collider, slot.side);
         const auto key = std::make_tuple(side, body, c.collider);
@@ -569,11 +582,32 @@ void Simulation::collect_contacts(ContactIndex& contact_index, ColliderIndex& co
             given.angular += (c.point - c.collider_centre).cross(c.impulse_on_collider);
         }
     });
+    note_touches();
     if (contact_events_.between_colliders()) collect_collider_contacts(collider_index);
     for (auto& slot : hands_) {
         if (slot->simulated && !slot->body->contact_response() &&
             !penetrating[static_cast<int>(slot->side)]) {
             slot->body->set_contact_response(true);
+        }
+    }
+}
+
+void Simulation::note_touches() {
+    const double g = world_->gravity().norm();
+    const Vec3 up = g > 0.0 ? Vec3(-world_->gravity() / g) : Vec3::Zero();
+    for (const HandTouch& t : touches_) {
+        bool holds = false;
+        if (t.motion != Motion::Static) {
+            holds = t.normal.dot(up) < kBearsWeight;
+            for (const HandTouch& o : touches_) {
+                if (holds) break;
+                holds = o.collider == t.collider && o.normal.dot(t.normal) < kOpposed;
+            }
+        }
+        if (t.touching) {
+            t.hand->note_touch(t.body, t.motion, t.normal, holds);
+        } else {
+            t.hand->note_near(t.body, t.normal, t.gap, holds);
         }
     }
 }

@@ -191,6 +191,10 @@ class Simulation {
     // collider_contacts_ when contact events want them).
     void collect_contacts(ContactIndex& contact_index, ColliderIndex& collider_index);
     void collect_collider_contacts(ColliderIndex& collider_index);
+    // Tells each hand what its bodies touched (collect_contacts' touches_), and whether they
+    // hold what they touch: another hand part touches it from the opposite side, or it rests
+    // on them.
+    void note_touches();
     void publish_hand(HandSlot& slot);
     // The last physics frame at or before `time_s`, and whether `time_s` is within a
     // microsecond of it. Physics frames fall on the display clock of physics/frame_clock.h,
@@ -208,6 +212,17 @@ class Simulation {
     std::array<std::unique_ptr<HandSlot>, 2> hands_;
     std::vector<ContactInfo> contacts_;
     std::vector<ContactInfo> collider_contacts_;  // only for contact events that want them
+    // A hand body touching a collider in the last substep.
+    struct HandTouch {
+        PhysicalHand* hand;
+        int body;
+        Motion motion;
+        Vec3 normal;  // from the collider toward the body
+        ColliderHandle collider;
+        bool touching;  // or only near a movable collider (within kLonePressGive)
+        double gap;     // how far apart, when only near
+    };
+    std::vector<HandTouch> touches_;
     ContactEventLog contact_events_;
     std::map<ColliderHandle, HandImpulse> hand_impulses_;  // not taken yet
     bool hand_impulses_wanted_ = false;

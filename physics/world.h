@@ -56,6 +56,7 @@ class World {
                   const Vec3& angular_velocity);
     std::optional<BodyState> body_state(ColliderHandle handle) const;
     std::size_t collider_count() const { return colliders_.size(); }
+    const Vec3& gravity() const { return settings_.gravity; }
     // Every collider's pose and velocities are finite.
     bool colliders_finite() const;
 

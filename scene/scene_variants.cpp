@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <random>
+#include <type_traits>
 #include <utility>
 
 #include "tracking.h"
@@ -90,6 +91,35 @@ Scene mirrored(const Scene& input) {
     for (Predicate& p : scene.success) {
         if (auto* inside = std::get_if<InsidePredicate>(&p))
             inside->center = mirror_point(inside->center);
+    }
+    return scene;
+}
+
+Scene shifted(const Scene& input, const Vec3& offset) {
+    Scene scene = input;
+    for (Collider& c : scene.colliders) {
+        c.pose.position += offset;
+        for (TimedPose& p : c.path) p.pose.position += offset;
+    }
+    for (auto& hand : scene.hands) {
+        if (!hand) continue;
+        for (Keyframe& k : hand->keyframes) k.wrist.position += offset;
+        for (RecordedSample& s : hand->recorded) {
+            for (Pose& j : s.hand.joints) j.position += offset;
+        }
+    }
+    for (Predicate& p : scene.success) {
+        std::visit(
+            [&](auto& predicate) {
+                using T = std::decay_t<decltype(predicate)>;
+                if constexpr (std::is_same_v<T, InsidePredicate>) {
+                    predicate.center += offset;
+                } else if constexpr (std::is_same_v<T, AbovePredicate> ||
+                                     std::is_same_v<T, HeldPredicate>) {
+                    predicate.min_y += offset.y();
+                }
+            },
+            p);
     }
     return scene;
 }

@@ -40,6 +40,10 @@ std::vector<SceneVariant> scene_variants(const Scene& base, const VariantOptions
 
 // The scene reflected through the YZ plane, hands swapped.
 Scene mirrored(const Scene& scene);
+// The scene moved by `offset`, everything in it and its regions with it. The same motion
+// elsewhere: a contact-rich run's outcome can turn on the last bit of a float (the
+// robustness benchmark plays each variant at several sub-millimetre offsets).
+Scene shifted(const Scene& scene, const Vec3& offset);
 // The scene's script played `speed` times as fast.
 Scene sped_up(const Scene& scene, double speed);
 // The same, except a throw or a flick (a keyframe leg in which a wrist moves faster than

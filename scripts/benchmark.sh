@@ -4,7 +4,8 @@
 # raw-Bullet floor under it, and a callgrind profile of the piles), the
 # layer's overhead per call (bench/overhead.json), and the stress figures of every drive
 # over STRESS_SEEDS (default 1-100) of pathological tracking and the extreme parameters, and
-# the robustness benchmark (variants of the sample tasks, SEEDS seeds each, default 3), and
+# the robustness benchmark (variants of the sample tasks, SEEDS seeds each, default 3, each
+# played SHIFTS times moved a little, default 4), and
 # the sample scenes at every display rate.
 # Takes several minutes; not part of the tests.
 set -euo pipefail
@@ -20,7 +21,7 @@ for size in "1024 1024" "2064 2208"; do
     # shellcheck disable=SC2086  # two numbers
     VK_ICD_FILENAMES=$lavapipe "$build/tests/overlay/physhand-overlay-bench" --frames 30 --size $size
 done >"$out/overlay.jsonl"
-"$build/tests/physhand-robustness" --out "$out" --repeat "${SEEDS:-3}" >/dev/null
+"$build/tests/physhand-robustness" --out "$out" --repeat "${SEEDS:-3}" --shifts "${SHIFTS:-4}" >/dev/null
 "$build/tests/physhand-display-rates" --out "$out" --repeat "${REPEAT:-3}" >/dev/null
 "$build/tests/physhand-overhead" --benchmark_repetitions="${REPEAT:-3}" \
     --benchmark_out="$out/overhead.json" --benchmark_out_format=json --summary "$out/overhead.md"

@@ -27,8 +27,8 @@ std::optional<std::vector<int>> parse_counts(const std::string& text) {
 }  // namespace
 
 std::optional<Options> parse_options(int argc, char** argv, const char* tool,
-                                     const std::filesystem::path& default_scenes,
-                                     bool with_filters) {
+                                     const std::filesystem::path& default_scenes, bool with_filters,
+                                     bool with_shifts) {
     Options o;
     o.scenes_dir = default_scenes;
     bool ok = true;
@@ -45,6 +45,8 @@ std::optional<Options> parse_options(int argc, char** argv, const char* tool,
             o.only_scenes.emplace_back(argv[++i]);
         } else if (with_filters && a == "--drive" && has_value) {
             o.only_drives.emplace_back(argv[++i]);
+        } else if (with_shifts && a == "--shifts" && has_value) {
+            o.shifts = std::max(1, std::atoi(argv[++i]));
         } else if (with_filters && a == "--substeps" && has_value) {
             const auto counts = parse_counts(argv[++i]);
             ok = counts.has_value();
@@ -57,7 +59,7 @@ std::optional<Options> parse_options(int argc, char** argv, const char* tool,
         std::cerr << "usage: " << tool << " [--out DIR] [--repeat N] [--scenes DIR]"
                   << (with_filters ? " [--scene NAME]... [--drive NAME]... [--substeps N,N...]"
                                    : "")
-                  << "\n";
+                  << (with_shifts ? " [--shifts N]" : "") << "\n";
         return std::nullopt;
     }
     std::filesystem::create_directories(o.out);

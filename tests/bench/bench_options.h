@@ -18,13 +18,14 @@ struct Options {
     std::vector<std::string> only_scenes;
     std::vector<std::string> only_drives;
     std::vector<int> only_substeps;
+    int shifts = 1;  // physhand-robustness: plays of each variant, each moved a little
 };
 
 // nullopt (after printing the usage of `tool`) on a bad command line; the filters are
-// accepted only when `with_filters`.
+// accepted only when `with_filters`, --shifts only when `with_shifts`.
 std::optional<Options> parse_options(int argc, char** argv, const char* tool,
                                      const std::filesystem::path& default_scenes,
-                                     bool with_filters = false);
+                                     bool with_filters = false, bool with_shifts = false);
 
 // True when `list` is empty (no filter) or holds `value`.
 template <typename T>

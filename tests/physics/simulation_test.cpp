@@ -91,6 +91,47 @@ TEST(Simulation, ACubeDroppedOntoAnOpenPalmStaysOnIt) {
     }
 }
 
+// How far a light 2 cm cube resting on a slippery table moves when the open hand's index
+// fingertip, its ghost `dip` into the cube's top, is drawn back 6 cm across it and lifted away.
+double brushed_cube_travel(double dip) {
+    Simulation sim(SimulationSettings{}, Vec3(0, -9.81, 0));
+    constexpr double half = 0.01;
+    const Vec3 wrist(0, 1, 0);
+    const auto ghost = [&](double lift, double back) {
+        return std::array<HandPose, 2>{HandPose{}, right_hand(wrist + Vec3(0, lift, back), 0.0)};
+    };
+    const HandPose open = ghost(0, 0)[1];
+    const Vec3 tip = open[Joint::IndexTip].position;
+    const Vec3 mid = (tip + open[Joint::IndexDistal].position) / 2;
+    const double radius =
+        std::min(open.radii[index_of(Joint::IndexTip)], open.radii[index_of(Joint::IndexDistal)]);
+    const double top = mid.y() - radius + dip;  // under the middle of the distal bone
+    Collider table =
+        static_box("table", Vec3(0, top - 2 * half - 0.025, -0.2), Vec3(0.4, 0.025, 0.4));
+    table.friction = 0.3;
+    sim.add_collider(table);
+    const ColliderHandle cube =
+        sim.add_collider(dynamic_box("cube", Vec3(mid.x(), top - half, mid.z()), half, 0.02));
+    const Vec3 start = sim.body_state(cube)->pose.position;
+    int f = 0;
+    for (int k = 1; k <= 20; ++k) sim.step_to(++f / 90.0, ghost(0.03 * (1 - k / 20.0), 0));
+    for (int k = 1; k <= 10; ++k) sim.step_to(++f / 90.0, ghost(0, 0));
+    for (int k = 1; k <= 27; ++k) sim.step_to(++f / 90.0, ghost(0, 0.2 * k / 90.0));
+    for (int k = 1; k <= 45; ++k) sim.step_to(++f / 90.0, ghost(0.05 * k / 45.0, 0.06));
+    const Vec3 moved = sim.body_state(cube)->pose.position - start;
+    return Vec3(moved.x(), 0, moved.z()).norm();
+}
+
+// A fingertip whose ghost dips a few millimetres into what it brushes past (tracking noise, a
+// hand drawn back over what it has just put down) leaves it where it is: the displacement
+// task's cube was pulled back out of its hole so. Pressed in deliberately, it still drags it.
+TEST(Simulation, AFingertipBrushingPastACubeLeavesItWhereItIs) {
+    // Before kLonePressGive: 38 and 54 mm.
+    EXPECT_LT(brushed_cube_travel(0.0015), 0.005);
+    EXPECT_LT(brushed_cube_travel(0.0025), 0.005);
+    EXPECT_GT(brushed_cube_travel(0.01), 0.03);
+}
+
 // The distance from `p` to the nearest point of a capsule's axis segment.
 double to_axis(const HandSolid& capsule, const Vec3& p) {
     const Vec3 half = capsule.pose.orientation * Vec3(0, 0, capsule.size.z());

@@ -36,6 +36,40 @@ TEST(SceneVariants, TheMirroredScenePlaysTheMirrorImageWithTheOtherHand) {
               scene.find_collider("cube")->pose.position);
 }
 
+TEST(SceneVariants, AShiftedSceneMovesEverythingInItAndItsRegions) {
+    const Vec3 offset(0.001, 0.002, -0.003);
+    for (const char* name : {"lift_hold", "displacement"}) {
+        const Scene scene = sample_scene(name);
+        const Scene moved = shifted(scene, offset);
+        for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
+            EXPECT_LT((moved.colliders[i].pose.position - scene.colliders[i].pose.position - offset)
+                          .norm(),
+                      1e-12)
+                << scene.colliders[i].id;
+        }
+        for (double t : {0.0, 2.5, 4.1}) {
+            const HandPose before =
+                evaluate_script(*scene.hand(HandSide::Right), HandSide::Right, t);
+            const HandPose after =
+                evaluate_script(*moved.hand(HandSide::Right), HandSide::Right, t);
+            for (std::size_t j = 0; j < kJointCount; ++j) {
+                EXPECT_LT((after.joints[j].position - before.joints[j].position - offset).norm(),
+                          1e-9);
+            }
+        }
+        for (std::size_t i = 0; i < scene.success.size(); ++i) {
+            if (const auto* in = std::get_if<InsidePredicate>(&scene.success[i])) {
+                EXPECT_LT((std::get<InsidePredicate>(moved.success[i]).center - in->center - offset)
+                              .norm(),
+                          1e-12);
+            } else if (const auto* held = std::get_if<HeldPredicate>(&scene.success[i])) {
+                EXPECT_DOUBLE_EQ(std::get<HeldPredicate>(moved.success[i]).min_y,
+                                 held->min_y + offset.y());
+            }
+        }
+    }
+}
+
 TEST(SceneVariants, AFasterScriptKeepsItsShapeAndTheTimeToSettle) {
     const Scene scene = sample_scene("lift_hold");
     const Scene fast = sped_up(scene, 1.3);
