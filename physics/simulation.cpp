@@ -560,14 +560,13 @@ void Simulation::collect_contacts(ContactIndex& contact_index, ColliderIndex& co
         if (!slot.body->contact_response()) return;
         if (c.distance > kTouchDistance && c.impulse <= 0.0) {
             if (c.collider_motion != Motion::Static && c.distance < kLonePressGive) {
-                touches_.push_back({slot.body.get(), body, c.collider_motion, c.normal, c.collider,
-                                    false, c.distance});
+                touches_.push_back(
+                    {slot.body.get(), body, c.collider_motion, c.normal, c.collider, c.distance});
             }
             return;
         }
         last_max_penetration_ = std::max(last_max_penetration_, -c.distance);
-        touches_.push_back(
-            {slot.body.get(), body, c.collider_motion, c.normal, c.collider, true, 0.0});
+        touches_.push_back({slot.body.get(), body, c.collider_motion, c.normal, c.collider, 0.0});
         for (Joint j : slot.body->carried_joints(body)) slot.state.in_contact[index_of(j)] = true;
         world_->mark_touched(c.collider, slot.side);
         const auto key = std::make_tuple(side, body, c.collider);
@@ -604,7 +603,7 @@ void Simulation::note_touches() {
                 holds = o.collider == t.collider && o.normal.dot(t.normal) < kOpposed;
             }
         }
-        if (t.touching) {
+        if (t.gap == 0.0) {
             t.hand->note_touch(t.body, t.motion, t.normal, holds);
         } else {
             t.hand->note_near(t.body, t.normal, t.gap, holds);

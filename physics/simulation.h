@@ -219,8 +219,7 @@ class Simulation {
         Motion motion;
         Vec3 normal;  // from the collider toward the body
         ColliderHandle collider;
-        bool touching;  // or only near a movable collider (within kLonePressGive)
-        double gap;     // how far apart, when only near
+        double gap;  // 0: touching; else only near a movable collider (within kLonePressGive)
     };
     std::vector<HandTouch> touches_;
     ContactEventLog contact_events_;
