@@ -66,9 +66,8 @@ struct PhysicalHand::Body {
     Vec3 movable_normal = Vec3::Zero();
     // It held a movable collider it touched (note_touch's `holds`).
     bool holding = false;
-    // A movable collider lay within kLonePressGive of it, untouched.
-    bool near_movable = false;
-    // How far the nearest movable collider it touched or neared lay from it (0: touching).
+    // How far the nearest movable collider it touched or neared lay from it (0: touching;
+    // kLonePressGive: none near).
     double movable_gap = kLonePressGive;
 };
 
@@ -256,7 +255,7 @@ Vec3 PhysicalHand::contact_aim(const Body& b, const Vec3& position, const Vec3& 
     if (drive_.law == DriveLaw::Explicit) return goal;
     // A kinematic collider may be an app's own object that the hand grips (docs/extension.md's
     // coupling recipe): movable, as a dynamic one.
-    if (b.touching_movable || b.touching_kinematic || b.near_movable) {
+    if (b.movable_gap < kLonePressGive) {
         if (b.holding) return goal;
         const std::optional<Vec3> n = common_direction(b.movable_normal);
         if (!n) return goal;
@@ -274,26 +273,20 @@ void PhysicalHand::clear_touches() {
     for (auto& b : bodies_) {
         b->touching_fixed = b->touching_movable = b->touching_kinematic = false;
         b->static_normal = b->movable_normal = Vec3::Zero();
-        b->holding = b->near_movable = false;
+        b->holding = false;
         b->movable_gap = kLonePressGive;
     }
 }
 
-void PhysicalHand::note_near(int body, const Vec3& normal, double gap, bool holds) {
+void PhysicalHand::note_touch(int body, Motion motion, const Vec3& normal, double gap, bool holds) {
     Body& b = *bodies_[static_cast<std::size_t>(body)];
-    b.near_movable = true;
-    b.movable_gap = std::min(b.movable_gap, gap);
-    b.movable_normal += normal;
-    if (holds) b.holding = true;
-}
-
-void PhysicalHand::note_touch(int body, Motion motion, const Vec3& normal, bool holds) {
-    Body& b = *bodies_[static_cast<std::size_t>(body)];
-    (motion == Motion::Dynamic ? b.touching_movable : b.touching_fixed) = true;
-    if (motion == Motion::Kinematic) b.touching_kinematic = true;
+    if (gap == 0.0) {
+        (motion == Motion::Dynamic ? b.touching_movable : b.touching_fixed) = true;
+        if (motion == Motion::Kinematic) b.touching_kinematic = true;
+    }
     (motion == Motion::Static ? b.static_normal : b.movable_normal) += normal;
     if (motion == Motion::Static) return;
-    b.movable_gap = 0.0;
+    b.movable_gap = std::min(b.movable_gap, gap);
     if (holds) b.holding = true;
 }
 

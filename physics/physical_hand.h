@@ -39,16 +39,15 @@ class PhysicalHand {
     void drive(const HandPose& goal, const HandPose& previous_target, const HandPose& target,
                double frame_dt, double h);
     // What bodies touched in the last substep (`normal`: from the collider toward the body;
-    // `holds`: on a movable collider, another hand part touches it from the opposite side or
-    // it rests on this body): a body that rests on what it cannot move turns more softly, one
-    // that rests on static colliders alone presses no deeper than kRestingPressDepth into
-    // them, and one that presses movable colliders without holding them gives up
-    // kLonePressGive of its reach.
+    // `gap`: 0, or how far a movable collider lay from a body it did not touch, under
+    // kLonePressGive; `holds`: on a movable collider, another hand part touches it from the
+    // opposite side or it rests on this body): a body that rests on what it cannot move turns
+    // more softly, one that rests on static colliders alone presses no deeper than
+    // kRestingPressDepth into them, and one that presses or nears movable colliders without
+    // holding them gives up kLonePressGive of its reach (near as well as touching, so that it
+    // does not press in again each time it comes clear).
     void clear_touches();
-    void note_touch(int body, Motion motion, const Vec3& normal, bool holds);
-    // A movable collider `gap` from a body (under kLonePressGive), not touching it: the body
-    // gives as if it touched it, so that it does not press in again each time it comes clear.
-    void note_near(int body, const Vec3& normal, double gap, bool holds);
+    void note_touch(int body, Motion motion, const Vec3& normal, double gap, bool holds);
     // While re-seating, bodies pass through colliders until they are clear of them.
     void set_contact_response(bool enabled);
     bool contact_response() const { return contact_response_; }

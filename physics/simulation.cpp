@@ -603,11 +603,7 @@ void Simulation::note_touches() {
                 holds = o.collider == t.collider && o.normal.dot(t.normal) < kOpposed;
             }
         }
-        if (t.gap == 0.0) {
-            t.hand->note_touch(t.body, t.motion, t.normal, holds);
-        } else {
-            t.hand->note_near(t.body, t.normal, t.gap, holds);
-        }
+        t.hand->note_touch(t.body, t.motion, t.normal, t.gap, holds);
     }
 }
 
