@@ -64,7 +64,6 @@ struct PhysicalHand::Body {
     // In the last substep: touched a static or kinematic collider, or a dynamic one.
     bool touching_fixed = false;
     bool touching_movable = false;
-    bool touching_kinematic = false;
     // The sums of the static and of the movable colliders' contact normals (toward the body)
     // in the last substep.
     Vec3 static_normal = Vec3::Zero();
@@ -276,7 +275,7 @@ Vec3 PhysicalHand::contact_aim(const Body& b, const Vec3& position, const Vec3& 
 
 void PhysicalHand::clear_touches() {
     for (auto& b : bodies_) {
-        b->touching_fixed = b->touching_movable = b->touching_kinematic = false;
+        b->touching_fixed = b->touching_movable = false;
         b->static_normal = b->movable_normal = Vec3::Zero();
         b->holding = false;
         b->movable_gap = kLonePressGive;
@@ -285,10 +284,7 @@ void PhysicalHand::clear_touches() {
 
 void PhysicalHand::note_touch(int body, Motion motion, const Vec3& normal, double gap, bool holds) {
     Body& b = *bodies_[static_cast<std::size_t>(body)];
-    if (gap == 0.0) {
-        (motion == Motion::Dynamic ? b.touching_movable : b.touching_fixed) = true;
-        if (motion == Motion::Kinematic) b.touching_kinematic = true;
-    }
+    if (gap == 0.0) (motion == Motion::Dynamic ? b.touching_movable : b.touching_fixed) = true;
     (motion == Motion::Static ? b.static_normal : b.movable_normal) += normal;
     if (motion == Motion::Static) return;
     b.movable_gap = std::min(b.movable_gap, gap);
