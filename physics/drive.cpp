@@ -38,7 +38,7 @@ const std::vector<DriveSettings>& builtin_drives() {
     // for bones, 20 -> 80 % for implicit; 0.5-4 m/s^2 within seed noise of that, 4 worse).
     // `paper` follows the ghost as it comes, as Algorithm 1 does.
     constexpr GhostSmoothing kSmoothing{
-        .min_cutoff_hz = 1.0, .beta = 3500.0, .noise_acceleration = 1.0};
+        .min_cutoff_hz = 1.0, .beta = 3500.0, .noise_acceleration = 1.0, .fit_skeleton = true};
     static const std::vector<DriveSettings> drives = {
         {"bones", BodyModel::BoneCapsules, DriveLaw::Implicit, 20000.0, 90.0, true, 20.0, 1,
          kSmoothing},

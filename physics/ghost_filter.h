@@ -22,6 +22,8 @@ struct GhostSmoothing {
     // Before all that, and whether or not the hand touches anything, the NoiseFilter's
     // expected joint acceleration, m/s^2 (0: off).
     double noise_acceleration = 0.0;
+    // Before that, the tracking noise that no hand could make is taken out (SkeletonFit).
+    bool fit_skeleton = false;
     bool enabled() const { return min_cutoff_hz > 0.0; }
 };
 

@@ -17,8 +17,7 @@ constexpr double kCleanNoise = 0.25e-3;
 void NoiseFilter::reset(const HandPose& ghost) {
     state_ = ghost;
     velocity_.fill(Vec3::Zero());
-    for (std::size_t j = 0; j < kJointCount; ++j) history_[0][j] = ghost.joints[j].position;
-    intervals_ = 0;
+    differences_.restart(positions(ghost));
 }
 
 double NoiseFilter::noise() const {
@@ -30,30 +29,16 @@ bool NoiseFilter::passes_clean() const {
 }
 
 void NoiseFilter::measure_noise(const HandPose& ghost, double dt) {
-    const bool same_dt = intervals_ > 0 && std::abs(dt - last_dt_) <= 1e-3 * last_dt_;
-    intervals_ = same_dt ? std::min(intervals_ + 1, 3) : 1;
-    last_dt_ = dt;
-    if (intervals_ == 3) {
-        // Third differences: a hand's smooth motion (its jerk times dt^3) all but vanishes
-        // from them, white noise of variance s^2 per axis gives 20 s^2.
-        std::array<Vec3, kJointCount> third;
-        Vec3 mean = Vec3::Zero();
-        for (std::size_t j = 0; j < kJointCount; ++j) {
-            third[j] = ghost.joints[j].position - 3.0 * history_[0][j] + 3.0 * history_[1][j] -
-                       history_[2][j];
-            mean += third[j];
-        }
-        mean /= kJointCount;
-        double sum = 0.0;
-        for (std::size_t j = 0; j < kJointCount; ++j) sum += (third[j] - mean).squaredNorm();
-        // Less the hand's mean share, which the whole hand's motion would also leave.
-        const double variance = sum / (3.0 * kJointCount * 20.0 * (1.0 - 1.0 / kJointCount));
-        const double a = 1.0 - std::exp(-dt / kNoiseMemory);
-        noise_variance_ += a * (variance - noise_variance_);
-    }
-    history_[2] = history_[1];
-    history_[1] = history_[0];
-    for (std::size_t j = 0; j < kJointCount; ++j) history_[0][j] = ghost.joints[j].position;
+    const std::optional<JointVectors> third = differences_.add(positions(ghost), dt);
+    if (!third) return;
+    Vec3 mean = Vec3::Zero();
+    for (const Vec3& d : *third) mean += d;
+    mean /= kJointCount;
+    double sum = 0.0;
+    for (const Vec3& d : *third) sum += (d - mean).squaredNorm();
+    // Less the hand's mean share, which the whole hand's motion would also leave.
+    const double variance = sum / (3.0 * kJointCount * 20.0 * (1.0 - 1.0 / kJointCount));
+    noise_variance_ += running_weight(dt, kNoiseMemory) * (variance - noise_variance_);
 }
 
 HandPose NoiseFilter::apply(const HandPose& ghost, double dt, double acceleration) {

@@ -3,6 +3,7 @@
 #include <array>
 
 #include "hand_skeleton.h"
+#include "noise_meter.h"
 
 namespace physhand {
 
@@ -30,9 +31,7 @@ class NoiseFilter {
 
     HandPose state_;
     std::array<Vec3, kJointCount> velocity_{};
-    std::array<std::array<Vec3, kJointCount>, 3> history_{};  // the last raw positions
-    double last_dt_ = 0.0;
-    int intervals_ = 0;  // consecutive sample intervals of one length, up to 3
+    ThirdDifferences differences_;  // of the raw positions
     double noise_variance_ = 0.0;
 };
 

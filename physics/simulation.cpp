@@ -14,6 +14,7 @@
 #include "ghost_filter.h"
 #include "noise_filter.h"
 #include "physical_hand.h"
+#include "skeleton_fit.h"
 #include "tracking_gap.h"
 #include "world.h"
 
@@ -98,6 +99,7 @@ struct Simulation::HandSlot {
     HandPose previous_ghost;   // ghost at the previous step
     HandPose target;           // what the drive follows: the ghost, smoothed
     HandPose previous_target;  // target at the previous step
+    SkeletonFit skeleton;
     NoiseFilter noise;
     GhostFilter filter;
     TrackingGap gap;
@@ -276,6 +278,12 @@ void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input, double 
     if (valid) {
         // A hand coming back from a loss is compared with where it was predicted to be.
         const bool was_lost = slot.have_ghost && !slot.tracked && slot.simulated;
+        // Before anything reads the sample: the hand is built from it, the gate and the
+        // jump checks compare it, and a gated hand is it.
+        if (settings_.drive.smoothing.fit_skeleton) {
+            const double dt = slot.have_ghost ? time_s_ - slot.last_tracked_time : 0.0;
+            sample = slot.skeleton.apply(sample, dt);
+        }
         const HandPose& last = was_lost ? slot.target : slot.ghost;
         // A jump no hand can make: start over from the new place rather than fling the
         // physical hand (and whatever it holds) across the room.

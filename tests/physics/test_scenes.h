@@ -1,5 +1,6 @@
 #pragma once
 
+#include <random>
 #include <string>
 
 #include "hand_skeleton.h"
@@ -47,5 +48,20 @@ inline Collider dynamic_box(const std::string& id, const Vec3& center, double ha
     c.mass = mass;
     return c;
 }
+
+// Adds white noise of `sigma` per axis to every joint's position.
+class Noisy {
+  public:
+    explicit Noisy(double sigma, std::uint64_t seed = 7) : rng_(seed), noise_(0.0, sigma) {}
+    HandPose operator()(HandPose hand) {
+        for (Pose& joint : hand.joints)
+            joint.position += Vec3(noise_(rng_), noise_(rng_), noise_(rng_));
+        return hand;
+    }
+
+  private:
+    std::mt19937_64 rng_;
+    std::normal_distribution<double> noise_;
+};
 
 }  // namespace physhand::testing

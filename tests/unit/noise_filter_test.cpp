@@ -4,30 +4,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 
 #include "../physics/test_scenes.h"
 
 namespace physhand {
 namespace {
 
+using testing::Noisy;
+
 constexpr double kDt = 1 / 90.0;
 constexpr double kAcceleration = 1.0;
-
-// Adds white noise of `sigma` per axis to every joint.
-class Noisy {
-  public:
-    explicit Noisy(double sigma, std::uint64_t seed = 7) : rng_(seed), noise_(0.0, sigma) {}
-    HandPose operator()(HandPose hand) {
-        for (Pose& joint : hand.joints)
-            joint.position += Vec3(noise_(rng_), noise_(rng_), noise_(rng_));
-        return hand;
-    }
-
-  private:
-    std::mt19937_64 rng_;
-    std::normal_distribution<double> noise_;
-};
 
 // A clean hand moving and closing: every sample comes out exactly as it went in.
 TEST(NoiseFilter, PassesCleanTrackingThroughExactly) {
