@@ -77,7 +77,7 @@ void SkeletonFit::learn(const HandPose& ghost, const JointVectors& from_position
 }
 
 void SkeletonFit::restart(const HandPose& ghost) {
-    started_ = true;
+    started_ = measuring_ = true;
     learn(ghost, bones_from_positions(ghost), 0.0);
     position_differences_.restart(bones_from_positions(ghost));
     orientation_differences_.restart(bones_from_orientations(ghost));
@@ -89,11 +89,6 @@ double SkeletonFit::position_noise() const {
 
 void SkeletonFit::measure_noise(const JointVectors& from_positions,
                                 const JointVectors& from_orientations, double dt) {
-    const double a = running_weight(dt, kNoiseMemory);
-    double disagreement = 0.0;
-    for (std::size_t j = 0; j < kJointCount; ++j)
-        disagreement += (from_orientations[j] - from_positions[j]).squaredNorm();
-    disagreement_variance_ += a * (disagreement / (3.0 * kBoneCount) - disagreement_variance_);
     const std::optional<JointVectors> p = position_differences_.add(from_positions, dt);
     const std::optional<JointVectors> o = orientation_differences_.add(from_orientations, dt);
     if (!p || !o) return;
@@ -103,6 +98,7 @@ void SkeletonFit::measure_noise(const JointVectors& from_positions,
         o_sum += (*o)[j].squaredNorm();
         length_sum += offset_[j].squaredNorm();
     }
+    const double a = running_weight(dt, kNoiseMemory);
     position_variance_ += a * (p_sum / (3.0 * 20.0 * kBoneCount) - position_variance_);
     if (length_sum > 0.0)
         orientation_variance_ += a * (o_sum / (3.0 * 20.0 * length_sum) - orientation_variance_);
@@ -117,17 +113,32 @@ HandPose SkeletonFit::apply(const HandPose& ghost, double dt) {
         restart(ghost);
         return ghost;
     }
+    double sample_disagreement = 0.0;
+    for (std::size_t j = 0; j < kJointCount; ++j)
+        sample_disagreement += (from_orientations[j] - from_positions[j]).squaredNorm();
+    disagreement_variance_ += running_weight(dt, kNoiseMemory) *
+                              (sample_disagreement / (3.0 * kBoneCount) - disagreement_variance_);
+    // Positions and orientations that agree need nothing learned, measured or fitted.
+    if (disagreement_variance_ <= kCleanDisagreement * kCleanDisagreement) {
+        measuring_ = false;
+        return ghost;
+    }
+    if (!measuring_) {
+        position_differences_.restart(from_positions);
+        orientation_differences_.restart(from_orientations);
+        measuring_ = true;
+    } else {
+        measure_noise(from_positions, from_orientations, dt);
+    }
     learn(ghost, from_positions, dt);
-    measure_noise(from_positions, from_orientations, dt);
     const double disagreement = std::sqrt(disagreement_variance_);
     const double phase_in =
         std::clamp((disagreement - kCleanDisagreement) / kCleanDisagreement, 0.0, 1.0) *
         std::clamp(2.0 - disagreement / kUnrelatedDisagreement, 0.0, 1.0);
     if (phase_in == 0.0 || !(position_variance_ > 0.0)) return ghost;
 
-    // Each bone weighed by the inverse of its noise; the orientations' includes the learned
-    // offset's error: what it still has of the position noise it was learned from, and how
-    // far the recent mean has moved from it.
+    // Each bone weighed by the inverse of its noise; the orientations' includes what the
+    // learned offset still has of the position noise it was learned from.
     const double p_var = position_variance_;
     JointVectors chain = zero_vectors();
     Vec3 shift = Vec3::Zero();

@@ -44,6 +44,7 @@ class SkeletonFit {
     JointVectors recent_ = zero_vectors();  // the same over the last kNoiseMemory
     std::array<Bone, kJointCount> bones_{};
     bool started_ = false;
+    bool measuring_ = false;  // the noise, while positions and orientations disagree
     ThirdDifferences position_differences_;
     ThirdDifferences orientation_differences_;
     double position_variance_ = 0.0;
