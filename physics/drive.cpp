@@ -36,6 +36,8 @@ const std::vector<DriveSettings>& builtin_drives() {
     // not, they first take out the noise the NoiseFilter measures, expecting joints to change
     // speed by about 1 m/s^2 (robustness benchmark: grips under 3 mm of noise held 16 -> 60 %
     // for bones, 20 -> 80 % for implicit; 0.5-4 m/s^2 within seed noise of that, 4 worse).
+    // Before all that, the SkeletonFit puts each joint that moved on its own back on its bone
+    // (robustness, bones/1 over 3200 plays: 79.3 -> 88.9 %; noise family 70 -> 89 %).
     // `paper` follows the ghost as it comes, as Algorithm 1 does.
     constexpr GhostSmoothing kSmoothing{
         .min_cutoff_hz = 1.0, .beta = 3500.0, .noise_acceleration = 1.0, .fit_skeleton = true};
