@@ -53,6 +53,7 @@ JointVectors SkeletonFit::bones_from_orientations(const HandPose& ghost) const {
 
 void SkeletonFit::learn(const HandPose& ghost, const JointVectors& from_positions, double dt) {
     const double recent_weight = running_weight(dt, kNoiseMemory);
+    const double memory_weight = running_weight(dt, kBoneMemory);
     for (std::size_t j = 0; j < kJointCount; ++j) {
         const auto parent = joint_parent(static_cast<Joint>(j));
         if (!parent) continue;
@@ -63,7 +64,7 @@ void SkeletonFit::learn(const HandPose& ghost, const JointVectors& from_position
             continue;
         }
         b.outliers = 0;
-        const double a = std::max(1.0 / (b.samples + 1.0), running_weight(dt, kBoneMemory));
+        const double a = std::max(1.0 / (b.samples + 1.0), memory_weight);
         b.samples = 1.0 / a;
         offset_[j] += a * (local - offset_[j]);
         recent_[j] += std::max(a, recent_weight) * (local - recent_[j]);
@@ -78,8 +79,9 @@ void SkeletonFit::learn(const HandPose& ghost, const JointVectors& from_position
 
 void SkeletonFit::restart(const HandPose& ghost) {
     started_ = measuring_ = true;
-    learn(ghost, bones_from_positions(ghost), 0.0);
-    position_differences_.restart(bones_from_positions(ghost));
+    const JointVectors from_positions = bones_from_positions(ghost);
+    learn(ghost, from_positions, 0.0);
+    position_differences_.restart(from_positions);
     orientation_differences_.restart(bones_from_orientations(ghost));
 }
 
