@@ -267,6 +267,23 @@ bool Simulation::state_is_finite() const {
     return world_->colliders_finite();
 }
 
+void Simulation::bounds_with_hand(const HandSlot& slot, const HandPose& ghost, Vec3& lo,
+                                  Vec3& hi) const {
+    ghost_bounds(ghost, lo, hi);
+    if (!slot.simulated) return;
+    Vec3 plo, phi;
+    slot.body->bounds(plo, phi);
+    lo = lo.cwiseMin(plo);
+    hi = hi.cwiseMax(phi);
+}
+
+bool Simulation::way_blocked(const HandSlot& slot, const HandPose& ghost) const {
+    if (!slot.simulated) return false;
+    Vec3 lo, hi;
+    bounds_with_hand(slot, ghost, lo, hi);
+    return world_->any_collider_near(lo, hi);
+}
+
 void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input, double step_dt) {
     HandPose sample = input;
     const bool valid = sample.active && sanitise(sample);
@@ -320,8 +337,11 @@ void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input, double 
             }
             if (was_lost) ++guards_.reacquisitions;
             // A hand holding or pressing something is eased onto its returning ghost, so what
-            // it holds comes along; a free hand goes straight to it.
-            if (was_lost && touching) slot.gap.reacquire(slot.target, followed);
+            // it holds comes along, and so is one with anything in its way there, which going
+            // straight to a ghost 13 cm off at 4 m/s flung (a ball flicked while the hand was
+            // lost, flying 8 m); a hand clear of everything goes straight to it.
+            if (was_lost && (touching || way_blocked(slot, followed)))
+                slot.gap.reacquire(slot.target, followed);
             slot.target = slot.gap.correct(followed, step_dt);
         }
         slot.have_ghost = true;
@@ -353,13 +373,7 @@ void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input, double 
     }
 
     Vec3 lo, hi;
-    ghost_bounds(slot.ghost, lo, hi);
-    if (slot.simulated) {
-        Vec3 plo, phi;
-        slot.body->bounds(plo, phi);
-        lo = lo.cwiseMin(plo);
-        hi = hi.cwiseMax(phi);
-    }
+    bounds_with_hand(slot, slot.ghost, lo, hi);
     const double reach = settings_.gate_reach * (slot.simulated ? kGateHysteresis : 1.0);
     // A collider that would come within reach during the frame wakes the hand now: a ball
     // thrown at 15 m/s crosses 17 cm in a frame and passed through a hand still asleep.

@@ -178,6 +178,10 @@ class Simulation {
   private:
     struct HandSlot;
     void step_substeps(int substeps);
+    // The box holding `ghost` and, while it is simulated, the slot's physical hand.
+    void bounds_with_hand(const HandSlot& slot, const HandPose& ghost, Vec3& lo, Vec3& hi) const;
+    // Whether any collider lies within the box holding the simulated hand and `ghost`.
+    bool way_blocked(const HandSlot& slot, const HandPose& ghost) const;
     // Takes the step's ghost sample (`step_dt` after the last) and decides whether the hand
     // is simulated in it.
     void update_hand_gate(HandSlot& slot, const HandPose& ghost, double step_dt);

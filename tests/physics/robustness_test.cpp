@@ -39,6 +39,23 @@ TEST(Robustness, ALongDropoutLetsGoGently) {
     EXPECT_LT(r.metrics.max_body_speed, 2.6);
 }
 
+// A free hand lost as it nears something comes back eased onto its ghost rather than swept
+// there at up to 4 m/s: lost while reaching for the cube (0.85-1.15 s), it knocked the cube at
+// 1.3 m/s; lost while flicking the ball (1.52-1.82 s), whose flick it misses, it came back 13
+// cm on, hit the ball on its way there and flung it 8 m.
+TEST(Robustness, AHandLostNearSomethingIsNotSweptIntoItOnReturn) {
+    const RunResult reach = run_scene(lift_hold_with_dropout(0.85, 1.15), RunOptions{});
+    EXPECT_TRUE(reach.success) << reach.predicates[0].detail;
+    EXPECT_EQ(reach.guards.reacquisitions, 1u);
+    EXPECT_LT(reach.metrics.max_body_speed, 0.6);
+
+    Scene flick = sample_scene("sphere");
+    flick.tracking.dropouts.push_back({HandSide::Right, 1.52, 1.82});
+    const RunResult r = run_scene(flick, RunOptions{});
+    EXPECT_EQ(r.guards.reacquisitions, 1u);
+    EXPECT_LT(r.metrics.max_body_speed, 1.0);
+}
+
 // Every family: other masses, a slipperier cube, the motion faster and slower, a smaller and
 // a larger cube (gripped as a person would grip it), 30 and 60 Hz tracking with 2 mm of
 // noise, 3 mm of noise at 90 Hz (before the NoiseFilter the cube was never lifted), dropouts

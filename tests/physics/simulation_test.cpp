@@ -249,6 +249,22 @@ TEST(Simulation, ShortDropoutsHoldTheHandAndLongOnesLetGo) {
     EXPECT_FALSE(sim.hand(HandSide::Right).joints.active);
 }
 
+// With nothing in its way, a hand whose ghost comes back 8 cm off goes straight to it.
+TEST(Simulation, AHandClearOfEverythingGoesStraightToItsReturningGhost) {
+    SimulationSettings settings;
+    settings.gating = false;  // simulated with no collider near
+    Simulation sim(settings, Vec3(0, -9.81, 0));
+    const Vec3 start(0.1, 0.9, -0.3);
+    const Vec3 back = start + Vec3(0, 0, -0.08);
+    int f = 1;
+    for (; f <= 20; ++f) sim.step_to(f / 90.0, {HandPose{}, right_hand(start, 0.0)});
+    for (; f <= 38; ++f) sim.step_to(f / 90.0, {HandPose{}, HandPose{}});  // 0.2 s lost
+    for (const int last = f + 9; f < last; ++f)
+        sim.step_to(f / 90.0, {HandPose{}, right_hand(back, 0.0)});
+    EXPECT_EQ(sim.guard_counters().reacquisitions, 1u);
+    EXPECT_LT((sim.hand(HandSide::Right).joints[Joint::Wrist].position - back).norm(), 0.005);
+}
+
 TEST(Simulation, KinematicCollidersMoveAndCarryWhatRestsOnThem) {
     Simulation sim(SimulationSettings{}, Vec3(0, -9.81, 0));
     Collider tray = static_box("tray", Vec3(0, 1, 0), Vec3(0.2, 0.01, 0.2));
