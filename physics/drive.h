@@ -86,10 +86,9 @@ inline constexpr double kRestingPressDepth = 0.002;
 // noise. Robustness, bones/1, 200 variants each shifted by 0 to 2.6 mm (8 shifts): 1216 ->
 // 1268 of 1600 (displacement 149 -> 162 of 320, sphere 288 -> 312); giving only while
 // touching, 1259, but a finger drawn across a cube pressed in again each time it came clear
-// and dragged it 16 mm; 2 mm gave 631 of 800 against 612, 4 mm 618. A part that had held
-// the object giving up all its reach until it came clear of it succeeded in 2590 of 3200
-// plays against 2537 (16 shifts), within the spread of single variants that flipped either
-// way (displacement mirrored: 16 -> 13 of 16).
+// and dragged it 16 mm; 2 mm gave 631 of 800 against 612, 4 mm 618. A part that held the
+// object and no longer does (its opposite has let go) gives up all its reach until it comes
+// clear of it (Simulation's kOpposedShare).
 inline constexpr double kLonePressGive = 0.003;
 Vec3 drive_torque(const DriveSettings& drive, double mass, const Eigen::Matrix3d& inertia_world,
                   const Quat& orientation, const Vec3& angular_velocity, const Quat& target,

@@ -70,6 +70,9 @@ struct PhysicalHand::Body {
     Vec3 movable_normal = Vec3::Zero();
     // It held a movable collider it touched (note_touch's `holds`).
     bool holding = false;
+    // It held what it touched before this substep, and has stayed within kLonePressGive of
+    // it since: no longer holding, it is letting go.
+    bool held_before = false;
     // How far the nearest movable collider it touched or neared lay from it (0: touching;
     // kLonePressGive: none near).
     double movable_gap = kLonePressGive;
@@ -265,7 +268,10 @@ Vec3 PhysicalHand::contact_aim(const Body& b, const Vec3& position, const Vec3& 
         if (!n) return goal;
         // How deep the goal lies in what the body touches or nears.
         const double into = (position - goal).dot(*n) - b.movable_gap;
-        return into > 0.0 ? Vec3(goal + std::min(into, kLonePressGive) * *n) : goal;
+        if (into <= 0.0) return goal;
+        // A part letting go gives up all its reach: the squeeze it held with, let loose once
+        // nothing opposite held against it, kicked a thrown cube off its course.
+        return goal + (b.held_before ? into : std::min(into, kLonePressGive)) * *n;
     }
     const std::optional<Vec3> n = common_direction(b.static_normal);
     if (!n) return goal;
@@ -275,6 +281,7 @@ Vec3 PhysicalHand::contact_aim(const Body& b, const Vec3& position, const Vec3& 
 
 void PhysicalHand::clear_touches() {
     for (auto& b : bodies_) {
+        b->held_before = b->holding || (b->held_before && b->movable_gap < kLonePressGive);
         b->touching_fixed = b->touching_movable = false;
         b->static_normal = b->movable_normal = Vec3::Zero();
         b->holding = false;

@@ -82,7 +82,8 @@ class PhysicalHand {
     Pose target_of(const Body& body, const HandPose& target) const;
     // Where the drive pulls a body at `position` whose target is `goal`: for a body resting on
     // static colliders alone, no further into them than kRestingPressDepth; for one pressing
-    // movable colliders without holding them, kLonePressGive less far into them.
+    // movable colliders without holding them, kLonePressGive less far into them, and no
+    // further than it is when it is letting go of what it held.
     Vec3 contact_aim(const Body& body, const Vec3& position, const Vec3& goal) const;
     Pose body_pose(const Body& body, const HandPose& target) const;
     // Joint `j` as `body` places it, keeping its offset in `target` from the body's anchor.

@@ -103,7 +103,7 @@ TEST_F(SampleApp, HeadlessPlayerMatchesThePhysicsRunner) {
 }
 
 // A cube the app keeps in its own engine, coupled to the hands through their impulses, ends
-// where the physics runner's coupling puts it: pushed into its region (app_push), thrown out
+// where the physics runner's coupling puts it: pushed into its region (app_push), kicked out
 // of a pinch (app_lift, the coupling's limit, XR_PHYSHAND_physical_hands.h).
 TEST_F(SampleApp, AppEngineScenesMatchThePhysicsRunner) {
     for (const char* name : {"app_push", "app_lift"}) {

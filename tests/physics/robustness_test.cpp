@@ -100,9 +100,8 @@ TEST(Robustness, ASqueezedGripSinksLessThanHalfAsDeepAsItsAnchorsOnceLetIt) {
 // The throw 1.5 and 1.7 times as fast (wrist up to 4.8 m/s, fingertips over 6 m/s as they
 // open): no finger passes into the projectile as it lets go, and the projectile leaves no
 // faster than the hand part that let it go last (+10 %), nor flies on faster than the palm
-// that threw it. At
-// one substep the opening fingers passed 38 mm into it and flung it off at 1.3 times the
-// palm's speed.
+// that threw it (+10 %, and what 50 ms of falling adds). At one substep the opening fingers
+// passed 38 mm into it and flung it off at 1.3 times the palm's speed.
 TEST(Robustness, AFastThrowNeitherTunnelsNorFlings) {
     for (double speed : {1.5, 1.7}) {
         const RunResult r = run_scene(sped_up(sample_scene("throw"), speed), RunOptions{});
@@ -111,7 +110,9 @@ TEST(Robustness, AFastThrowNeitherTunnelsNorFlings) {
         const Release& release = *r.metrics.throw_release;
         ASSERT_TRUE(release.ratio()) << speed;
         EXPECT_LE(*release.ratio(), 1.1) << speed;
-        EXPECT_LE(release.body_speed, 1.1 * release.hand_speed) << speed;
+        // Measured 50 ms after the last contact, the body has fallen for that long.
+        const double fall = 9.81 * 0.050;
+        EXPECT_LE(release.body_speed, 1.1 * release.hand_speed + fall) << speed;
     }
 }
 

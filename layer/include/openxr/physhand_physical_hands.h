@@ -229,8 +229,8 @@ typedef struct XrPhysicalColliderLocationsPHYSHAND {
 **   - Tipping works. A 16 cm post pushed near its top falls over, as the layer's own does
 **     (tests/physics/scenes_test.cpp).
 **   - Lifting does not. app_lift: as a pinch closes, the impulses, which are those that stop
-**     the fingers against an object that cannot move, kick the 80 g cube out of the hand at
-**     2.5 m/s; nothing is held. A grip needs the object in the hands' own simulation:
+**     the fingers against an object that cannot move, kick the 80 g cube out of the hand (at
+**     up to 5.6 m/s, back onto the table); nothing is held. A grip needs the object in the hands' own simulation:
 **     declare it DYNAMIC there (and teleport it to the app's pose when the app moves it). */
 typedef struct XrPhysicalColliderImpulsePHYSHAND {
     XrVector3f linearImpulse;  /* N*s */
