@@ -39,6 +39,17 @@ const std::vector<DriveSettings>& builtin_drives() {
     // Before all that, the SkeletonFit puts each joint that moved on its own back on its bone
     // (robustness, bones/1 over 3200 plays: 79.3 -> 88.9 %; noise family 70 -> 89 %).
     // `paper` follows the ghost as it comes, as Algorithm 1 does.
+    // The force limit is far above a grip's (a 0.1 kg bone pushes about m/h^2 = 810 N/m times
+    // its ghost's reach past what stops it: 3-4 N holding the thrown or placed cube, 15 N
+    // while lift_hold's fingers close at curl 0.8).
+    // Capping each part's push along its contact normal lower (a grip saturating with depth) kept
+    // the squeeze shallower (curl 0.5: 0.8 mm at 3 N against 3.7 mm) but let the squeezed cube go
+    // at higher curls, and stalled the displacement task's cube, which a thumb pushes into its hole
+    // while the wall stops the rest of the hand (robustness, bones/1, 800 plays: 4 N, displacement
+    // 13 of 160 against 128). Capping only while no part touches anything fixed re-aimed the throw
+    // rather than steadying it (at 4 N, 3200 plays: 2952 -> 3002, the throw's release speed 1.9 ->
+    // 1.7 m/s with the same sideways kick; mirrored throws 16 -> 5 of 16, the mass family's 29 ->
+    // 16 of 32: the 3x heavy projectile was not thrown).
     constexpr GhostSmoothing kSmoothing{
         .min_cutoff_hz = 1.0, .beta = 3500.0, .noise_acceleration = 1.0, .fit_skeleton = true};
     static const std::vector<DriveSettings> drives = {

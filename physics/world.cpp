@@ -168,6 +168,11 @@ World::World(const Settings& settings)
     // (40 runs each): penetration over 0.01 mm in 4 of 40 runs (was 40 of 40), a held cube's
     // slip under 0.01 mm in 35 of 40 (38 at 0.85), stack's tracking unchanged.
     info.m_warmstartingFactor = 0.5f;
+    // Bullet's 10 iterations kept. Held still, a cube squeezed between thumb and fingers
+    // (lift_hold, final curl 0.5) stays 3.2 mm into the thumb at 10 iterations, the solver
+    // unconverged, and 0.02 mm at 100; but grips are made on the 10 (robustness, bones/1, 800
+    // plays: 730 succeed at 10, 690 at 30, 716 at 100), and while the fingers close the
+    // deepest point stays 4-9 mm at any count.
 }
 
 World::~World() {
