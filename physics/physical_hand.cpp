@@ -73,6 +73,8 @@ struct PhysicalHand::Body {
     // It held what it touched before this substep, and has stayed within kLonePressGive of
     // it since: no longer holding, it is letting go.
     bool held_before = false;
+    // Its target's velocity relative to the palm's target over the frame last driven (world).
+    Vec3 velocity_in_hand = Vec3::Zero();
     // How far the nearest movable collider it touched or neared lay from it (0: touching;
     // kLonePressGive: none near).
     double movable_gap = kLonePressGive;
@@ -225,11 +227,17 @@ void PhysicalHand::seat(const HandPose& target, const HandPose& previous_target,
 
 void PhysicalHand::drive(const HandPose& goal_pose, const HandPose& previous_target,
                          const HandPose& target, double frame_dt, double h) {
+    const Pose& palm_before = previous_target[Joint::Palm];
+    const Pose& palm_now = target[Joint::Palm];
     for (auto& b : bodies_) {
         btRigidBody& r = *b->rigid;
         const Pose goal = target_of(*b, goal_pose);
         const Pose before = target_of(*b, previous_target);
         const Pose now = target_of(*b, target);
+        b->velocity_in_hand =
+            palm_now.orientation *
+            (palm_now.inverse() * now.position - palm_before.inverse() * before.position) /
+            frame_dt;
         const LinearState body{from_bt(r.getCenterOfMassPosition()),
                                from_bt(r.getLinearVelocity())};
         const LinearState aim{contact_aim(*b, body.position, goal.position),
@@ -277,6 +285,10 @@ Vec3 PhysicalHand::contact_aim(const Body& b, const Vec3& position, const Vec3& 
     if (!n) return goal;
     const double into = (position - goal).dot(*n);
     return into > kRestingPressDepth ? Vec3(goal + (into - kRestingPressDepth) * *n) : goal;
+}
+
+double PhysicalHand::opening_speed(int body, const Vec3& normal) const {
+    return bodies_[static_cast<std::size_t>(body)]->velocity_in_hand.dot(normal);
 }
 
 void PhysicalHand::clear_touches() {

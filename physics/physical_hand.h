@@ -47,6 +47,10 @@ class PhysicalHand {
     // holding them gives up kLonePressGive of its reach (near as well as touching, so that it
     // does not press in again each time it comes clear).
     void clear_touches();
+    // How fast `body`'s target moves along `normal` relative to the hand's palm target, m/s, in
+    // the frame last driven: over 0 along a contact normal (toward the body), that part of the
+    // ghost is opening away from what it touches, as fingers do letting go.
+    double opening_speed(int body, const Vec3& normal) const;
     void note_touch(int body, Motion motion, const Vec3& normal, double gap, bool holds);
     // While re-seating, bodies pass through colliders until they are clear of them.
     void set_contact_response(bool enabled);
