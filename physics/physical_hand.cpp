@@ -73,7 +73,8 @@ struct PhysicalHand::Body {
     // It held what it touched before this substep, and has stayed within kLonePressGive of
     // it since: no longer holding, it is letting go.
     bool held_before = false;
-    // Its target's velocity relative to the palm's target over the frame last driven (world).
+    // Its target's velocity relative to the palm's target over the frame last driven, turned
+    // as the palm is now (world axes).
     Vec3 velocity_in_hand = Vec3::Zero();
     // How far the nearest movable collider it touched or neared lay from it (0: touching;
     // kLonePressGive: none near).
@@ -227,17 +228,16 @@ void PhysicalHand::seat(const HandPose& target, const HandPose& previous_target,
 
 void PhysicalHand::drive(const HandPose& goal_pose, const HandPose& previous_target,
                          const HandPose& target, double frame_dt, double h) {
-    const Pose& palm_before = previous_target[Joint::Palm];
-    const Pose& palm_now = target[Joint::Palm];
+    const Pose palm_before = previous_target[Joint::Palm].inverse();
+    const Pose palm_now = target[Joint::Palm].inverse();
+    const Quat palm_turn = target[Joint::Palm].orientation;
     for (auto& b : bodies_) {
         btRigidBody& r = *b->rigid;
         const Pose goal = target_of(*b, goal_pose);
         const Pose before = target_of(*b, previous_target);
         const Pose now = target_of(*b, target);
         b->velocity_in_hand =
-            palm_now.orientation *
-            (palm_now.inverse() * now.position - palm_before.inverse() * before.position) /
-            frame_dt;
+            palm_turn * (palm_now * now.position - palm_before * before.position) / frame_dt;
         const LinearState body{from_bt(r.getCenterOfMassPosition()),
                                from_bt(r.getLinearVelocity())};
         const LinearState aim{contact_aim(*b, body.position, goal.position),

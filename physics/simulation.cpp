@@ -648,11 +648,11 @@ void Simulation::note_touches() {
             holds = t.normal.dot(up) < kBearsWeight;
             for (const HandTouch& o : touches_) {
                 if (holds) break;
+                if (o.collider != t.collider || o.normal.dot(t.normal) >= kOpposed) continue;
                 const double share = o.hand->opening_speed(o.body, o.normal) > kOpeningSpeed
                                          ? kOpeningShare
                                          : kOpposedShare;
-                holds = o.collider == t.collider && o.normal.dot(t.normal) < kOpposed &&
-                        o.impulse >= share * t.impulse;
+                holds = o.impulse >= share * t.impulse;
             }
         }
         t.hand->note_touch(t.body, t.motion, t.normal, t.gap, holds);
