@@ -230,8 +230,9 @@ typedef struct XrPhysicalColliderLocationsPHYSHAND {
 **     (tests/physics/scenes_test.cpp).
 **   - Lifting does not. app_lift: as a pinch closes, the impulses, which are those that stop
 **     the fingers against an object that cannot move, kick the 80 g cube out of the hand (at
-**     up to 5.6 m/s, back onto the table); nothing is held. A grip needs the object in the hands' own simulation:
-**     declare it DYNAMIC there (and teleport it to the app's pose when the app moves it). */
+**     up to 5.6 m/s, back onto the table); nothing is held. A grip needs the object in the
+**     hands' own simulation: declare it DYNAMIC there (and teleport it to the app's pose when
+**     the app moves it). */
 typedef struct XrPhysicalColliderImpulsePHYSHAND {
     XrVector3f linearImpulse;  /* N*s */
     XrVector3f angularImpulse; /* N*m*s */
