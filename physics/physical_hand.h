@@ -51,7 +51,10 @@ class PhysicalHand {
     // the frame last driven: over 0 along a contact normal (toward the body), that part of the
     // ghost is opening away from what it touches, as fingers do letting go.
     double opening_speed(int body, const Vec3& normal) const;
-    void note_touch(int body, Motion motion, const Vec3& normal, double gap, bool holds);
+    // A collider `body` touched (gap 0) or neared in the last substep: its normal toward the
+    // body, whether the body holds it (Simulation::note_touches), its velocity at the contact.
+    void note_touch(int body, Motion motion, const Vec3& normal, double gap, bool holds,
+                    const Vec3& velocity);
     // While re-seating, bodies pass through colliders until they are clear of them.
     void set_contact_response(bool enabled);
     bool contact_response() const { return contact_response_; }
@@ -84,11 +87,13 @@ class PhysicalHand {
   private:
     struct Body;
     Pose target_of(const Body& body, const HandPose& target) const;
-    // Where the drive pulls a body at `position` whose target is `goal`: for a body resting on
-    // static colliders alone, no further into them than kRestingPressDepth; for one pressing
-    // movable colliders without holding them, kLonePressGive less far into them, and no
-    // further than it is when it is letting go of what it held.
-    Vec3 contact_aim(const Body& body, const Vec3& position, const Vec3& goal) const;
+    // Where and how fast the drive pulls a body at `position` whose target is `goal`, moving
+    // at `goal_velocity`: for a body resting on static colliders alone, no further into them
+    // than kRestingPressDepth; for one pressing movable colliders without holding them,
+    // kLonePressGive less far into them, no further than it is when it is letting go of what it
+    // held, and, where its pad side presses them, no faster into them than they move.
+    LinearState contact_aim(const Body& body, const Vec3& position, const Pose& goal,
+                            const Vec3& goal_velocity) const;
     Pose body_pose(const Body& body, const HandPose& target) const;
     // Joint `j` as `body` places it, keeping its offset in `target` from the body's anchor.
     Pose joint_on(const Body& body, Joint j, const HandPose& target) const;

@@ -608,13 +608,13 @@ void Simulation::collect_contacts(ContactIndex& contact_index, ColliderIndex& co
         if (c.distance > kTouchDistance && c.impulse <= 0.0) {
             if (c.collider_motion != Motion::Static && c.distance < kLonePressGive) {
                 touches_.push_back({slot.body.get(), body, c.collider_motion, c.normal, c.collider,
-                                    c.distance, 0.0});
+                                    c.distance, 0.0, c.collider_velocity});
             }
             return;
         }
         last_max_penetration_ = std::max(last_max_penetration_, -c.distance);
-        touches_.push_back(
-            {slot.body.get(), body, c.collider_motion, c.normal, c.collider, 0.0, c.impulse});
+        touches_.push_back({slot.body.get(), body, c.collider_motion, c.normal, c.collider, 0.0,
+                            c.impulse, c.collider_velocity});
         for (Joint j : slot.body->carried_joints(body)) slot.state.in_contact[index_of(j)] = true;
         world_->mark_touched(c.collider, slot.side);
         const auto key = std::make_tuple(side, body, c.collider);
@@ -655,7 +655,7 @@ void Simulation::note_touches() {
                 holds = o.impulse >= share * t.impulse;
             }
         }
-        t.hand->note_touch(t.body, t.motion, t.normal, t.gap, holds);
+        t.hand->note_touch(t.body, t.motion, t.normal, t.gap, holds, t.collider_velocity);
     }
 }
 

@@ -452,9 +452,13 @@ void World::for_each_hand_contact(const std::function<void(const ContactPoint&)>
             const Vec3 point =
                 from_bt(swapped ? pt.getPositionWorldOnA() : pt.getPositionWorldOnB());
             const Vec3 impulse_on_collider = impulse_on_first(pt) * (swapped ? 1.0 : -1.0);
+            const btRigidBody* rb = btRigidBody::upcast(b);
+            const Vec3 velocity = rb ? from_bt(rb->getVelocityInLocalPoint(
+                                           to_bt(point) - rb->getCenterOfMassPosition()))
+                                     : Vec3::Zero();
             visit({a, static_cast<ColliderHandle>(b->getUserIndex2()), pt.getDistance(),
                    pt.getAppliedImpulse(), motion_of(*b), point, normal, impulse_on_collider,
-                   from_bt(b->getWorldTransform().getOrigin()), approach});
+                   from_bt(b->getWorldTransform().getOrigin()), approach, velocity});
         }
     }
 }

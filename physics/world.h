@@ -93,6 +93,8 @@ class World {
         // How fast the pair approached along the normal at its contact points before the
         // last substep's solver, m/s (0 when separating).
         double approach_speed;
+        // The collider's velocity at `point` (hand contacts; zero for collider pairs).
+        Vec3 collider_velocity = Vec3::Zero();
     };
     // Whether ContactPoint::approach_speed is measured (otherwise 0).
     void set_measure_approach(bool measure);
