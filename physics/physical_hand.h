@@ -51,8 +51,8 @@ class PhysicalHand {
     // the frame last driven: over 0 along a contact normal (toward the body), that part of the
     // ghost is opening away from what it touches, as fingers do letting go.
     double opening_speed(int body, const Vec3& normal) const;
-    // A collider `body` touched (gap 0) or neared in the last substep: its normal toward the
-    // body, whether the body holds it (Simulation::note_touches), its velocity at the contact.
+    // A collider that `body` touched (gap 0) or neared in the last substep: its normal toward
+    // the body, whether the body holds it (Simulation::note_touches), its velocity there.
     void note_touch(int body, Motion motion, const Vec3& normal, double gap, bool holds,
                     const Vec3& velocity);
     // While re-seating, bodies pass through colliders until they are clear of them.

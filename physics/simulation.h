@@ -225,7 +225,7 @@ class Simulation {
         ColliderHandle collider;
         double gap;      // 0: touching; else only near a movable collider (within kLonePressGive)
         double impulse;  // normal, N·s, in the last substep (0 when only near)
-        Vec3 collider_velocity;
+        Vec3 collider_velocity;  // at the contact point
     };
     std::vector<HandTouch> touches_;
     ContactEventLog contact_events_;
