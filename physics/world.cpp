@@ -10,6 +10,7 @@
 #include "bullet_convert.h"
 #include "capsule_box_collision.h"
 #include "face_contacts.h"
+#include "hand_depenetration.h"
 #include "hand_point_contacts.h"
 #include "hand_reach_dispatcher.h"
 #include "speed_limit.h"
@@ -52,9 +53,11 @@ Vec3 impulse_on_first(const btManifoldPoint& pt) {
 
 }  // namespace
 
-// Bullet's world with two additions for hands: contacts at the ends of each finger capsule
-// and the corners of the palm box, and the speed limit where it bounds motion: after the constraint
-// solver and before positions are integrated, so no body ever moves faster than the limit.
+// Bullet's world with three additions for hands: contacts at the ends of each finger capsule
+// and the corners of the palm box; the speed limit where it bounds motion: after the
+// constraint solver and before positions are integrated, so no body ever moves faster than
+// the limit; and hand parts moved out of what they went into once positions are integrated
+// (hand_depenetration.h).
 class HandWorld : public btDiscreteDynamicsWorld {
   public:
     HandWorld(btCollisionDispatcher* dispatcher, btBroadphaseInterface* broadphase,
@@ -95,6 +98,7 @@ class HandWorld : public btDiscreteDynamicsWorld {
                 fastest_collider_ = std::max(fastest_collider_, max_point_speed(body));
         }
         btDiscreteDynamicsWorld::integrateTransforms(h);
+        depenetrate_hands(*this);
     }
 
   private:
