@@ -116,7 +116,7 @@ void depenetrate_hands(btCollisionWorld& world) {
         for (std::size_t i = 0; i < t.movable.size(); ++i) {
             // Each move may have changed the depths found before it.
             const double depth = moved ? depth_now(world, *part, *t.movable[i].other) : depths[i];
-            drop_deeper_claims(*t.movable[i].manifold, std::min(depth, kHandDepthAllowed));
+            drop_deeper_claims(*t.movable[i].manifold, depth);
         }
     }
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <unordered_map>
+#include <vector>
 
 #include "bullet_convert.h"
 #include "capsule_box_collision.h"
@@ -13,6 +14,7 @@
 #include "hand_depenetration.h"
 #include "hand_point_contacts.h"
 #include "hand_reach_dispatcher.h"
+#include "pair_depth.h"
 #include "speed_limit.h"
 
 namespace physhand {
@@ -487,23 +489,24 @@ void World::for_each_collider_contact(
 }
 
 double World::depth_in_colliders(btCollisionShape& shape, const Pose& pose) const {
-    struct Deepest : btCollisionWorld::ContactResultCallback {
-        double depth = 0.0;
-        bool needsCollision(btBroadphaseProxy* proxy) const override {
-            return role_of(static_cast<const btCollisionObject*>(proxy->m_clientObject)) ==
-                   BodyRole::Collider;
+    struct Near : btBroadphaseAabbCallback {
+        std::vector<const btCollisionObject*> found;
+        bool process(const btBroadphaseProxy* proxy) override {
+            const auto* o = static_cast<const btCollisionObject*>(proxy->m_clientObject);
+            if (role_of(o) == BodyRole::Collider) found.push_back(o);
+            return true;
         }
-        btScalar addSingleResult(btManifoldPoint& point, const btCollisionObjectWrapper*, int, int,
-                                 const btCollisionObjectWrapper*, int, int) override {
-            depth = std::max(depth, -static_cast<double>(point.getDistance()));
-            return 0;
-        }
-    } deepest;
+    } near;
     btCollisionObject probe;
     probe.setCollisionShape(&shape);
     probe.setWorldTransform(to_bt(pose));
-    world_->contactTest(&probe, deepest);
-    return deepest.depth;
+    btVector3 lo, hi;
+    shape.getAabb(probe.getWorldTransform(), lo, hi);
+    world_->getBroadphase()->aabbTest(lo, hi, near);
+    double deepest = 0.0;
+    for (const btCollisionObject* collider : near.found)
+        deepest = std::max(deepest, pair_depth(*world_, probe, *collider).depth);
+    return deepest;
 }
 
 void World::mark_touched(ColliderHandle handle, HandSide side) {

@@ -73,7 +73,8 @@ class World {
     void finish_kinematic_motion();
 
     // How deep a shape placed at `pose` (not in the world) lies in the collider it goes
-    // deepest into, m; 0 in none. Bullet's closest-point queries; changes nothing.
+    // deepest into, m; 0 in none. By the contact algorithms (physics/pair_depth); changes
+    // nothing.
     double depth_in_colliders(btCollisionShape& shape, const Pose& pose) const;
 
     // Any collider whose bounds meet the box [lo, hi], or would within `lookahead_s` moving
