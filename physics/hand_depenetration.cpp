@@ -2,8 +2,8 @@
 
 #include <btBulletDynamicsCommon.h>
 
-#include <algorithm>
 #include <map>
+#include <utility>
 #include <vector>
 
 #include "pair_depth.h"

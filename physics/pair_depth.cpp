@@ -28,7 +28,6 @@ PairDepth pair_depth(btCollisionWorld& world, const btCollisionObject& a,
             if (-point.getDistance() <= deepest.depth) continue;
             deepest.depth = -point.getDistance();
             deepest.out = a_first ? point.m_normalWorldOnB : -point.m_normalWorldOnB;
-            deepest.at = a_first ? point.getPositionWorldOnA() : point.getPositionWorldOnB();
         }
     }
     algorithm->~btCollisionAlgorithm();

@@ -11,7 +11,6 @@ namespace physhand {
 struct PairDepth {
     double depth = 0.0;  // m; 0 when they do not overlap
     btVector3 out{0, 0, 0};
-    btVector3 at{0, 0, 0};  // the deepest point of `a`
 };
 
 // Found afresh by the world's contact algorithms, those the solver's contacts come from (a
