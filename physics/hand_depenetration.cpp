@@ -30,16 +30,35 @@ struct PartTouches {
     std::vector<Touch> fixed;
 };
 
-// Drops the points of `manifold` lying deeper than `depth` (plus the slack) as the bodies are
-// now placed.
-void drop_deeper_claims(btPersistentManifold& manifold, double depth) {
+// Puts every point of `manifold` (part, other) that claims more depth than `now` has (plus
+// the slack), as the bodies are now placed, at the pair's deepest point: a kept anchor read
+// along its old normal would push the part back in or tell of depth that is not there. Each
+// keeps its impulses, so what the solver did in this substep is still read as a contact
+// (dropping them lost it: a thumb pushed into a cube and moved out each substep counted as
+// touching nothing, and its drive pushed on as if free). Apart, they are dropped.
+void settle_claims(btPersistentManifold& manifold, const btCollisionObject& part,
+                   const PairDepth& now) {
     const btTransform& a = manifold.getBody0()->getWorldTransform();
     const btTransform& b = manifold.getBody1()->getWorldTransform();
+    const bool part_first = manifold.getBody0() == &part;
     for (int p = manifold.getNumContacts() - 1; p >= 0; --p) {
-        const btManifoldPoint& point = manifold.getContactPoint(p);
+        btManifoldPoint& point = manifold.getContactPoint(p);
         const double distance =
             (a * point.m_localPointA - b * point.m_localPointB).dot(point.m_normalWorldOnB);
-        if (-distance > depth + kClaimSlack) manifold.removeContactPoint(p);
+        if (-distance <= now.depth + kClaimSlack) continue;
+        if (now.depth <= 0.0) {  // apart: no point of theirs to put it at
+            manifold.removeContactPoint(p);
+            continue;
+        }
+        const btVector3& on_first = part_first ? now.on_a : now.on_b;
+        const btVector3& on_second = part_first ? now.on_b : now.on_a;
+        point.m_localPointA = a.invXform(on_first);
+        point.m_localPointB = b.invXform(on_second);
+        point.m_positionWorldOnA = on_first;
+        point.m_positionWorldOnB = on_second;
+        point.m_normalWorldOnB = part_first ? now.out : -now.out;
+        point.m_distance1 = static_cast<btScalar>(-now.depth);
+        point.m_contactPointFlags &= ~BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED;
     }
 }
 
@@ -59,23 +78,18 @@ bool may_overlap(const btCollisionObject& a, const btCollisionObject& b) {
 }
 
 // How deep `part` lies in `other` now.
-double depth_now(btCollisionWorld& world, const btRigidBody& part, const btCollisionObject& other) {
-    return may_overlap(part, other) ? pair_depth(world, part, other).depth : 0.0;
+PairDepth depth_now(btCollisionWorld& world, const btRigidBody& part,
+                    const btCollisionObject& other) {
+    return may_overlap(part, other) ? pair_depth(world, part, other) : PairDepth{};
 }
 
-struct MoveOut {
-    bool moved = false;
-    double depth = 0.0;  // left, m
-};
-
-// Moves `part` out of `other` to kHandDepthAllowed.
-MoveOut move_out(btCollisionWorld& world, btRigidBody& part, const btCollisionObject& other) {
-    if (!may_overlap(part, other)) return {};
-    const PairDepth found = pair_depth(world, part, other);
+// Moves `part` out of `other` to kHandDepthAllowed; whether it moved.
+bool move_out(btCollisionWorld& world, btRigidBody& part, const btCollisionObject& other) {
+    const PairDepth found = depth_now(world, part, other);
     const double excess = found.depth - kHandDepthAllowed;
-    if (excess <= 0.0) return {false, found.depth};
+    if (excess <= 0.0) return false;
     move_part(part, found.out * static_cast<btScalar>(excess));
-    return {true, kHandDepthAllowed};
+    return true;
 }
 
 }  // namespace
@@ -101,23 +115,15 @@ void depenetrate_hands(btCollisionWorld& world) {
         const PartTouches& t = touches[part];
         if (t.movable.empty()) continue;
         bool moved = false;
-        std::vector<double> depths;
-        for (const Touch& touch : t.movable) {
-            const MoveOut m = move_out(world, *part, *touch.other);
-            moved |= m.moved;
-            depths.push_back(m.depth);
-        }
+        for (const Touch& touch : t.movable) moved |= move_out(world, *part, *touch.other);
         if (moved) {
             for (const Touch& touch : t.fixed) {
-                if (move_out(world, *part, *touch.other).moved)
-                    drop_deeper_claims(*touch.manifold, kHandDepthAllowed);
+                if (move_out(world, *part, *touch.other))
+                    settle_claims(*touch.manifold, *part, depth_now(world, *part, *touch.other));
             }
         }
-        for (std::size_t i = 0; i < t.movable.size(); ++i) {
-            // Each move may have changed the depths found before it.
-            const double depth = moved ? depth_now(world, *part, *t.movable[i].other) : depths[i];
-            drop_deeper_claims(*t.movable[i].manifold, depth);
-        }
+        for (const Touch& touch : t.movable)
+            settle_claims(*touch.manifold, *part, depth_now(world, *part, *touch.other));
     }
 }
 

@@ -28,6 +28,8 @@ PairDepth pair_depth(btCollisionWorld& world, const btCollisionObject& a,
             if (-point.getDistance() <= deepest.depth) continue;
             deepest.depth = -point.getDistance();
             deepest.out = a_first ? point.m_normalWorldOnB : -point.m_normalWorldOnB;
+            deepest.on_a = a_first ? point.getPositionWorldOnA() : point.getPositionWorldOnB();
+            deepest.on_b = a_first ? point.getPositionWorldOnB() : point.getPositionWorldOnA();
         }
     }
     algorithm->~btCollisionAlgorithm();

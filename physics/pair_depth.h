@@ -11,6 +11,9 @@ namespace physhand {
 struct PairDepth {
     double depth = 0.0;  // m; 0 when they do not overlap
     btVector3 out{0, 0, 0};
+    // The deepest point's ends, on `a` and on `b`.
+    btVector3 on_a{0, 0, 0};
+    btVector3 on_b{0, 0, 0};
 };
 
 // Found afresh by the world's contact algorithms, those the solver's contacts come from (a

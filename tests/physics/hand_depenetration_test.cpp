@@ -87,8 +87,9 @@ TEST_F(HandDepenetration, APairsDepthIsItsDeepestPoint) {
 
 // A finger squeezed into a held cube, its manifold still holding an anchor from before that
 // claims 9 mm along an old normal: the finger alone is moved out to the allowed depth, the
-// cube stays where it was, and the anchor is dropped.
-TEST_F(HandDepenetration, APartIsMovedOutAloneAndAnchorsClaimingMoreDepthAreDropped) {
+// cube stays where it was, and the anchor is put at the pair's deepest point, keeping the
+// impulse the solver gave it.
+TEST_F(HandDepenetration, APartIsMovedOutAloneAndAnchorsClaimingMoreDepthAreSettled) {
     const btTransform cube_pose(btQuaternion(btVector3(0, 1, 0), 0.3f), btVector3(0, 0.1f, 0));
     btRigidBody& cube = add(box_, cube_pose, 0.08, BodyRole::Collider);
     // Across the cube's +x face, 6 mm in.
@@ -106,6 +107,7 @@ TEST_F(HandDepenetration, APartIsMovedOutAloneAndAnchorsClaimingMoreDepthAreDrop
         finger_first ? finger.getWorldTransform().invXform(on_finger) : cube_pose.invXform(on_cube),
         finger_first ? cube_pose.invXform(on_cube) : finger.getWorldTransform().invXform(on_finger),
         finger_first ? old_normal : -old_normal, -0.009f);
+    anchor.m_appliedImpulse = 0.05f;  // what the solver pushed with in this substep
     manifold.addManifoldPoint(anchor);
     ASSERT_EQ(manifold.getNumContacts(), 2);
 
@@ -114,11 +116,16 @@ TEST_F(HandDepenetration, APartIsMovedOutAloneAndAnchorsClaimingMoreDepthAreDrop
     EXPECT_EQ(cube.getWorldTransform().getOrigin(), cube_pose.getOrigin());
     EXPECT_EQ(cube.getWorldTransform().getRotation(), cube_pose.getRotation());
     EXPECT_EQ(finger.getWorldTransform().getRotation(), in.getRotation());
-    ASSERT_EQ(manifold.getNumContacts(), 1);
-    const btManifoldPoint& kept = manifold.getContactPoint(0);
-    const btVector3 a = manifold.getBody0()->getWorldTransform() * kept.m_localPointA;
-    const btVector3 b = manifold.getBody1()->getWorldTransform() * kept.m_localPointB;
-    EXPECT_NEAR((a - b).dot(kept.m_normalWorldOnB), -kHandDepthAllowed, 2e-5);
+    ASSERT_EQ(manifold.getNumContacts(), 2);
+    float impulse = 0.0f;
+    for (int p = 0; p < 2; ++p) {
+        const btManifoldPoint& kept = manifold.getContactPoint(p);
+        const btVector3 a = manifold.getBody0()->getWorldTransform() * kept.m_localPointA;
+        const btVector3 b = manifold.getBody1()->getWorldTransform() * kept.m_localPointB;
+        EXPECT_NEAR((a - b).dot(kept.m_normalWorldOnB), -kHandDepthAllowed, 2e-5) << p;
+        impulse += kept.m_appliedImpulse;
+    }
+    EXPECT_EQ(impulse, 0.05f);
 }
 
 // Wedged between a cube and the table under it, a finger moved out of the cube's underside
