@@ -83,13 +83,18 @@ PairDepth depth_now(btCollisionWorld& world, const btRigidBody& part,
     return may_overlap(part, other) ? pair_depth(world, part, other) : PairDepth{};
 }
 
-// Moves `part` out of `other` to kHandDepthAllowed; whether it moved.
-bool move_out(btCollisionWorld& world, btRigidBody& part, const btCollisionObject& other) {
+struct MoveOut {
+    bool moved = false;
+    PairDepth before;  // the pair as found before the move
+};
+
+// Moves `part` out of `other` to kHandDepthAllowed.
+MoveOut move_out(btCollisionWorld& world, btRigidBody& part, const btCollisionObject& other) {
     const PairDepth found = depth_now(world, part, other);
     const double excess = found.depth - kHandDepthAllowed;
-    if (excess <= 0.0) return false;
+    if (excess <= 0.0) return {false, found};
     move_part(part, found.out * static_cast<btScalar>(excess));
-    return true;
+    return {true, found};
 }
 
 }  // namespace
@@ -115,15 +120,24 @@ void depenetrate_hands(btCollisionWorld& world) {
         const PartTouches& t = touches[part];
         if (t.movable.empty()) continue;
         bool moved = false;
-        for (const Touch& touch : t.movable) moved |= move_out(world, *part, *touch.other);
+        std::vector<PairDepth> found;
+        for (const Touch& touch : t.movable) {
+            const MoveOut m = move_out(world, *part, *touch.other);
+            moved |= m.moved;
+            found.push_back(m.before);
+        }
         if (moved) {
             for (const Touch& touch : t.fixed) {
-                if (move_out(world, *part, *touch.other))
+                if (move_out(world, *part, *touch.other).moved)
                     settle_claims(*touch.manifold, *part, depth_now(world, *part, *touch.other));
             }
         }
-        for (const Touch& touch : t.movable)
-            settle_claims(*touch.manifold, *part, depth_now(world, *part, *touch.other));
+        for (std::size_t i = 0; i < t.movable.size(); ++i) {
+            // What was found holds while the part has not moved.
+            const Touch& touch = t.movable[i];
+            settle_claims(*touch.manifold, *part,
+                          moved ? depth_now(world, *part, *touch.other) : found[i]);
+        }
     }
 }
 
