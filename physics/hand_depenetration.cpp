@@ -13,12 +13,8 @@ namespace physhand {
 
 namespace {
 
-// A kept point may claim this much more depth than its pair has before it is dropped.
+// A kept point may claim this much more depth than its pair has before it is settled.
 constexpr double kClaimSlack = 0.0005;
-
-bool has_role(const btCollisionObject& o, BodyRole role) {
-    return static_cast<BodyRole>(o.getUserIndex()) == role;
-}
 
 struct Touch {
     const btCollisionObject* other;
@@ -108,8 +104,8 @@ void depenetrate_hands(btCollisionWorld& world) {
         btPersistentManifold* m = dispatcher.getManifoldByIndexInternal(i);
         const btCollisionObject* a = m->getBody0();
         const btCollisionObject* b = m->getBody1();
-        if (has_role(*b, BodyRole::Hand)) std::swap(a, b);
-        if (!has_role(*a, BodyRole::Hand) || !has_role(*b, BodyRole::Collider)) continue;
+        if (role_of(b) == BodyRole::Hand) std::swap(a, b);
+        if (role_of(a) != BodyRole::Hand || role_of(b) != BodyRole::Collider) continue;
         auto* part = const_cast<btRigidBody*>(btRigidBody::upcast(a));
         if (!part || !part->hasContactResponse()) continue;
         auto [it, fresh] = touches.try_emplace(part);

@@ -35,10 +35,6 @@ constexpr btScalar kRollingFriction = 0.001f;
 // 0.65 m/s crossing 35 cm of table (sphere scene) and dropped short of the basket.
 constexpr double kBallRollingResistance = 0.005;
 
-BodyRole role_of(const btCollisionObject* o) {
-    return static_cast<BodyRole>(o->getUserIndex());
-}
-
 // Kinematic bodies are flagged static as well (massless to the solver).
 Motion motion_of(const btCollisionObject& o) {
     if (o.isKinematicObject()) return Motion::Kinematic;
@@ -135,6 +131,10 @@ class HandWorld : public btDiscreteDynamicsWorld {
     std::unordered_map<const btPersistentManifold*, double> approach_speed_;
     bool measure_approach_ = false;
 };
+
+BodyRole role_of(const btCollisionObject* o) {
+    return static_cast<BodyRole>(o->getUserIndex());
+}
 
 struct World::Entry {
     Collider collider;

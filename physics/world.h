@@ -25,6 +25,9 @@ class HandWorld;
 // Who a Bullet object is, kept in its user indices.
 enum class BodyRole : int { Collider = 1, Hand = 2 };
 
+// A collision object's role, as the world tags it (its user index).
+BodyRole role_of(const btCollisionObject* o);
+
 // Collision groups: hand parts never collide with each other (either hand).
 inline constexpr int kHandGroup = 1 << 6;
 
