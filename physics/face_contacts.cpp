@@ -7,6 +7,8 @@
 
 #include <array>
 
+#include "box_face_collision.h"
+
 namespace physhand {
 
 namespace {
@@ -48,6 +50,7 @@ void register_face_contacts(btCollisionDispatcher& dispatcher) {
         dispatcher.registerCollisionCreateFunc(a, STATIC_PLANE_PROXYTYPE, &on_plane);
         dispatcher.registerCollisionCreateFunc(STATIC_PLANE_PROXYTYPE, a, &plane_first);
     }
+    register_box_face_collision(dispatcher, penetration, kTurns, kFewestPoints);
 }
 
 }  // namespace physhand

@@ -11,7 +11,8 @@ namespace physhand {
 // rolled off a table, a 1 cm box wandered 12 cm over the floor, 60 s, nothing touching them).
 // The pair is turned a little about a few axes (Bullet's multipoint perturbation). Spheres
 // and capsules keep Bullet's single point: turned, a ball finds the same one again, and the
-// sphere drives' grips changed with the extra points (squeeze sweep, measured).
+// sphere drives' grips changed with the extra points (squeeze sweep, measured). A cylinder or
+// hull lying on a box's face gets its points as on a plane (box_face_collision.h).
 void register_face_contacts(btCollisionDispatcher& dispatcher);
 
 }  // namespace physhand
