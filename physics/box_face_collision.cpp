@@ -3,10 +3,12 @@
 #include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
 #include <BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
 #include <btBulletCollisionCommon.h>
 
 #include <array>
 #include <limits>
+#include <utility>
 
 namespace physhand {
 
@@ -25,11 +27,11 @@ constexpr btScalar kEdgeSlack = 1e-5f;
 // stand for what lies below them only near its plane.
 constexpr btScalar kFaceDepth = 0.01f;
 
-struct Face {
-    btVector3 normal;  // out of the box, world frame
-    btScalar offset;   // the face's plane: normal . x = offset
-    int axis;          // the box's axis it is normal to
-    btScalar separation = -std::numeric_limits<btScalar>::max();  // of the convex from it
+// A face's plane, facing the convex, and how far the convex lies above it.
+struct Plane {
+    btVector3 normal;  // toward the convex, world frame
+    btScalar offset;   // normal . x = offset on the plane
+    btScalar separation = -std::numeric_limits<btScalar>::max();
 };
 
 btVector3 lowest_point(const btConvexShape& convex, const btTransform& pose,
@@ -37,18 +39,38 @@ btVector3 lowest_point(const btConvexShape& convex, const btTransform& pose,
     return pose * convex.localGetSupportingVertex(pose.getBasis().transpose() * down);
 }
 
-// The box's face the convex lies farthest above or least deep under: a separating axis if
-// any of the box's faces is one.
-Face facing_face(const btConvexShape& convex, const btTransform& convex_pose,
-                 const btTransform& box_pose, const btVector3& half) {
-    Face best;
+btScalar separation(const btConvexShape& convex, const btTransform& pose, const btVector3& normal,
+                    btScalar offset) {
+    return normal.dot(lowest_point(convex, pose, -normal)) - offset;
+}
+
+// The convex's lowest points toward `plane` for directions tilted a little off its normal.
+std::array<btVector3, kTilts> lowest_points(const btConvexShape& convex, const btTransform& pose,
+                                            const btVector3& normal) {
+    btVector3 side, other_side;
+    btPlaneSpace1(normal, side, other_side);
+    const btScalar tilt = btMin(kMostTilt, kTiltReach / convex.getAngularMotionDisc());
+    std::array<btVector3, kTilts> points;
+    for (int k = 0; k < kTilts; ++k) {
+        const btScalar about = SIMD_2_PI * static_cast<btScalar>(k) / kTilts;
+        const btVector3 down =
+            -normal * btCos(tilt) + (side * btCos(about) + other_side * btSin(about)) * btSin(tilt);
+        points[k] = lowest_point(convex, pose, down);
+    }
+    return points;
+}
+
+// The box's face the convex lies farthest above or least deep under (a separating axis if
+// any of the box's faces is one), and the box's axis it is normal to.
+std::pair<Plane, int> facing_face(const btConvexShape& convex, const btTransform& convex_pose,
+                                  const btTransform& box_pose, const btVector3& half) {
+    std::pair<Plane, int> best;
     for (int axis = 0; axis < 3; ++axis) {
         for (const btScalar sign : {btScalar(1), btScalar(-1)}) {
             const btVector3 normal = box_pose.getBasis().getColumn(axis) * sign;
             const btScalar offset = normal.dot(box_pose.getOrigin()) + half[axis];
-            const btScalar separation =
-                normal.dot(lowest_point(convex, convex_pose, -normal)) - offset;
-            if (separation > best.separation) best = {normal, offset, axis, separation};
+            const btScalar s = separation(convex, convex_pose, normal, offset);
+            if (s > best.first.separation) best = {{normal, offset, s}, axis};
         }
     }
     return best;
@@ -56,16 +78,17 @@ Face facing_face(const btConvexShape& convex, const btTransform& convex_pose,
 
 struct Settings {
     btConvexPenetrationDepthSolver* penetration;
-    int turns;
+    int turns;  // GJK's perturbations, while the manifold holds fewer than `fewest` points
     int fewest;
 };
 
+// A cylinder or a convex hull against a box, either first.
 class BoxFaceAlgorithm : public btActivatingCollisionAlgorithm {
   public:
     BoxFaceAlgorithm(const btCollisionAlgorithmConstructionInfo& info,
                      const btCollisionObjectWrapper* first, const btCollisionObjectWrapper* second,
-                     bool box_first, const Settings& settings)
-        : btActivatingCollisionAlgorithm(info, first, second), box_first_(box_first) {
+                     bool face_first, const Settings& settings)
+        : btActivatingCollisionAlgorithm(info, first, second), face_first_(face_first) {
         const btCollisionObject* a = first->getCollisionObject();
         const btCollisionObject* b = second->getCollisionObject();
         if (!m_dispatcher->needsCollision(a, b)) return;
@@ -88,9 +111,10 @@ class BoxFaceAlgorithm : public btActivatingCollisionAlgorithm {
                           btManifoldResult* result) override {
         if (!manifold_) return;
         result->setPersistentManifold(manifold_);
+        const btCollisionObjectWrapper& convex = face_first_ ? *second : *first;
+        const btCollisionObjectWrapper& box = face_first_ ? *first : *second;
         // The two share the manifold, so a pair passing between them keeps its points.
-        if (!rest_on_face(*first, *second, *result))
-            gjk_->processCollision(first, second, info, result);
+        if (!rest_on_box(convex, box, *result)) gjk_->processCollision(first, second, info, result);
         if (manifold_->getNumContacts() > 0) result->refreshContactPoints();
     }
 
@@ -104,7 +128,9 @@ class BoxFaceAlgorithm : public btActivatingCollisionAlgorithm {
     }
 
     struct CreateFunc : btCollisionAlgorithmCreateFunc {
-        explicit CreateFunc(const Settings& s) : settings(s) {}
+        explicit CreateFunc(const Settings& s, bool face_first) : settings(s) {
+            m_swapped = face_first;
+        }
         btCollisionAlgorithm* CreateCollisionAlgorithm(
             btCollisionAlgorithmConstructionInfo& info, const btCollisionObjectWrapper* first,
             const btCollisionObjectWrapper* second) override {
@@ -115,66 +141,68 @@ class BoxFaceAlgorithm : public btActivatingCollisionAlgorithm {
     };
 
   private:
-    // Adds the points the convex rests on the box's face with, if it lies on one (or is
-    // apart from the box); false where GJK must find them.
-    bool rest_on_face(const btCollisionObjectWrapper& first, const btCollisionObjectWrapper& second,
-                      btManifoldResult& result) const {
-        const btCollisionObjectWrapper& convex_wrap = box_first_ ? second : first;
-        const btCollisionObjectWrapper& box_wrap = box_first_ ? first : second;
+    // Adds the convex's lowest points that lie on the face (`on_face`) where it lies on the
+    // face's plane; whether that is all GJK need not look for: the convex is apart from the
+    // plane, or all of them lie on the face. Where some lie beyond it (over the box's edge),
+    // GJK adds what they miss.
+    template <typename OnFace>
+    bool rest_on(const btCollisionObjectWrapper& convex_wrap, const Plane& plane, OnFace on_face,
+                 btManifoldResult& result) const {
+        if (plane.separation > manifold_->getContactBreakingThreshold()) return true;
+        if (plane.separation < -kFaceDepth) return false;
         const auto& convex = static_cast<const btConvexShape&>(*convex_wrap.getCollisionShape());
-        const auto& box = static_cast<const btBoxShape&>(*box_wrap.getCollisionShape());
-        const btTransform& convex_pose = convex_wrap.getWorldTransform();
-        const btTransform& box_pose = box_wrap.getWorldTransform();
-        const btVector3 half = box.getHalfExtentsWithMargin();
-        const Face face = facing_face(convex, convex_pose, box_pose, half);
-        if (face.separation > manifold_->getContactBreakingThreshold()) return true;
-        if (face.separation < -kFaceDepth) return false;
-
-        btVector3 side, other_side;
-        btPlaneSpace1(face.normal, side, other_side);
-        const btScalar tilt = btMin(kMostTilt, kTiltReach / convex.getAngularMotionDisc());
-        std::array<btVector3, kTilts> lowest;
-        for (int k = 0; k < kTilts; ++k) {
-            const btScalar about = SIMD_2_PI * static_cast<btScalar>(k) / kTilts;
-            const btVector3 down = -face.normal * btCos(tilt) +
-                                   (side * btCos(about) + other_side * btSin(about)) * btSin(tilt);
-            lowest[k] = lowest_point(convex, convex_pose, down);
-            const btVector3 on_box = box_pose.invXform(lowest[k]);
-            for (int axis = 0; axis < 3; ++axis) {
-                if (axis != face.axis && btFabs(on_box[axis]) > half[axis] + kEdgeSlack)
-                    return false;
+        bool all_on_face = true;
+        for (const btVector3& point :
+             lowest_points(convex, convex_wrap.getWorldTransform(), plane.normal)) {
+            if (!on_face(point)) {
+                all_on_face = false;
+                continue;
             }
-        }
-        for (const btVector3& point : lowest) {
-            const btScalar distance = face.normal.dot(point) - face.offset;
-            const btVector3 on_face = point - face.normal * distance;
-            // Normal and point are body 1's (the box's, or the convex's where the box is first).
-            if (box_first_) {
-                result.addContactPoint(-face.normal, point, distance);
+            const btScalar distance = plane.normal.dot(point) - plane.offset;
+            // Normal and point are the second body's: the face's, or the convex's.
+            if (face_first_) {
+                result.addContactPoint(-plane.normal, point, distance);
             } else {
-                result.addContactPoint(face.normal, on_face, distance);
+                result.addContactPoint(plane.normal, point - plane.normal * distance, distance);
             }
         }
-        return true;
+        return all_on_face;
+    }
+
+    bool rest_on_box(const btCollisionObjectWrapper& convex_wrap,
+                     const btCollisionObjectWrapper& box_wrap, btManifoldResult& result) const {
+        const auto& convex = static_cast<const btConvexShape&>(*convex_wrap.getCollisionShape());
+        const btTransform& box_pose = box_wrap.getWorldTransform();
+        const btVector3 half = static_cast<const btBoxShape&>(*box_wrap.getCollisionShape())
+                                   .getHalfExtentsWithMargin();
+        const auto [plane, axis] =
+            facing_face(convex, convex_wrap.getWorldTransform(), box_pose, half);
+        return rest_on(
+            convex_wrap, plane,
+            [&](const btVector3& point) {
+                const btVector3 local = box_pose.invXform(point);
+                for (int other = 0; other < 3; ++other) {
+                    if (other != axis && btFabs(local[other]) > half[other] + kEdgeSlack)
+                        return false;
+                }
+                return true;
+            },
+            result);
     }
 
     btPersistentManifold* manifold_ = nullptr;
     btCollisionAlgorithm* gjk_ = nullptr;
-    bool box_first_;
+    bool face_first_;
 };
 
 }  // namespace
 
-void register_box_face_collision(btCollisionDispatcher& dispatcher,
-                                 btConvexPenetrationDepthSolver& penetration, int turns,
-                                 int fewest) {
-    const Settings settings{&penetration, turns, fewest};
-    static BoxFaceAlgorithm::CreateFunc convex_first(settings);
-    static BoxFaceAlgorithm::CreateFunc box_first = [&] {
-        BoxFaceAlgorithm::CreateFunc f(settings);
-        f.m_swapped = true;
-        return f;
-    }();
+void register_box_face_collision(btCollisionDispatcher& dispatcher) {
+    static btGjkEpaPenetrationDepthSolver penetration;
+    static BoxFaceAlgorithm::CreateFunc convex_first(
+        {&penetration, kPerturbationTurns, kFewestPoints}, false);
+    static BoxFaceAlgorithm::CreateFunc box_first({&penetration, kPerturbationTurns, kFewestPoints},
+                                                  true);
     for (const int convex : {CYLINDER_SHAPE_PROXYTYPE, CONVEX_HULL_SHAPE_PROXYTYPE}) {
         dispatcher.registerCollisionCreateFunc(convex, BOX_SHAPE_PROXYTYPE, &convex_first);
         dispatcher.registerCollisionCreateFunc(BOX_SHAPE_PROXYTYPE, convex, &box_first);

@@ -1,7 +1,6 @@
 #pragma once
 
 class btCollisionDispatcher;
-class btConvexPenetrationDepthSolver;
 
 namespace physhand {
 
@@ -9,13 +8,15 @@ namespace physhand {
 // it rests on as on a plane: its lowest points for a few directions tilted slightly off the
 // face's normal, each measured straight to the face. Bullet's GJK finds one point a step,
 // measured on a turned copy where it perturbs for more, and those points' depths did not
-// agree: a 50 cm rod lying on a box rolled ever faster with nothing touching it, and off
-// the box (1 and 2 substeps; on a plane, whose points are found this way, it lay still).
-// Where a point falls outside the face (an object over the box's edge, or larger than the
-// face) the pair keeps Bullet's GJK, perturbed `turns` times while the manifold holds fewer
-// than `fewest` points.
-void register_box_face_collision(btCollisionDispatcher& dispatcher,
-                                 btConvexPenetrationDepthSolver& penetration, int turns,
-                                 int fewest);
+// agree: a 50 cm rod lying on a box rolled ever faster with nothing touching it, and off the
+// box (1 and 2 substeps; on a plane, whose points are found this way, it lay still). Where
+// some lowest points fall outside the face (an object over the box's edge, or larger than the
+// face), Bullet's GJK, with the multipoint perturbation below, adds what lies beyond.
+void register_box_face_collision(btCollisionDispatcher& dispatcher);
+
+// Bullet's multipoint perturbation for flat-sided pairs: turns per manifold, tried while it
+// holds fewer points than kFewestPoints (Bullet's suggestion).
+inline constexpr int kPerturbationTurns = 3;
+inline constexpr int kFewestPoints = 3;
 
 }  // namespace physhand

@@ -13,10 +13,6 @@ namespace physhand {
 
 namespace {
 
-// Turns per manifold, tried while it holds fewer points than this (Bullet's suggestion).
-constexpr int kTurns = 3;
-constexpr int kFewestPoints = 3;
-
 constexpr std::array<int, 3> kFlatSided = {BOX_SHAPE_PROXYTYPE, CYLINDER_SHAPE_PROXYTYPE,
                                            CONVEX_HULL_SHAPE_PROXYTYPE};
 
@@ -26,13 +22,13 @@ void register_face_contacts(btCollisionDispatcher& dispatcher) {
     static btGjkEpaPenetrationDepthSolver penetration;
     static btConvexConvexAlgorithm::CreateFunc convex = [] {
         btConvexConvexAlgorithm::CreateFunc f(&penetration);
-        f.m_numPerturbationIterations = kTurns;
+        f.m_numPerturbationIterations = kPerturbationTurns;
         f.m_minimumPointsPerturbationThreshold = kFewestPoints;
         return f;
     }();
     static btConvexPlaneCollisionAlgorithm::CreateFunc on_plane = [] {
         btConvexPlaneCollisionAlgorithm::CreateFunc f;
-        f.m_numPerturbationIterations = kTurns;
+        f.m_numPerturbationIterations = kPerturbationTurns;
         f.m_minimumPointsPerturbationThreshold = kFewestPoints;
         return f;
     }();
@@ -50,7 +46,7 @@ void register_face_contacts(btCollisionDispatcher& dispatcher) {
         dispatcher.registerCollisionCreateFunc(a, STATIC_PLANE_PROXYTYPE, &on_plane);
         dispatcher.registerCollisionCreateFunc(STATIC_PLANE_PROXYTYPE, a, &plane_first);
     }
-    register_box_face_collision(dispatcher, penetration, kTurns, kFewestPoints);
+    register_box_face_collision(dispatcher);
 }
 
 }  // namespace physhand

@@ -1,10 +1,7 @@
 #include "box_face_collision.h"
 
-#include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
 #include <btBulletCollisionCommon.h>
 #include <gtest/gtest.h>
-
-#include <memory>
 
 namespace physhand {
 namespace {
@@ -18,7 +15,7 @@ constexpr btScalar kRodRadius = 0.05f;
 class BoxFace : public ::testing::TestWithParam<bool> {
   protected:
     BoxFace() {
-        register_box_face_collision(dispatcher_, penetration_, 3, 3);
+        register_box_face_collision(dispatcher_);
         box_.setCollisionShape(&box_shape_);
         box_.setWorldTransform(box_pose_);
         rod_shape_.setMargin(kMargin);
@@ -57,7 +54,6 @@ class BoxFace : public ::testing::TestWithParam<bool> {
   private:
     btDefaultCollisionConfiguration configuration_;
     btCollisionDispatcher dispatcher_{&configuration_};
-    btGjkEpaPenetrationDepthSolver penetration_;
     btDbvtBroadphase broadphase_;
     btCollisionWorld world_{&dispatcher_, &broadphase_, &configuration_};
     btBoxShape box_shape_{kHalf};
