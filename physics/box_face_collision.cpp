@@ -1,6 +1,5 @@
 #include "box_face_collision.h"
 
-#include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
 #include <BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h>
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
@@ -9,6 +8,8 @@
 #include <array>
 #include <limits>
 #include <utility>
+
+#include "one_manifold_algorithm.h"
 
 namespace physhand {
 
@@ -83,27 +84,24 @@ struct Settings {
 };
 
 // A cylinder or a convex hull against a box, either first.
-class BoxFaceAlgorithm : public btActivatingCollisionAlgorithm {
+class BoxFaceAlgorithm : public OneManifoldAlgorithm {
   public:
+    // The manifold is kept in the wrappers' order, so that points are added unswapped.
     BoxFaceAlgorithm(const btCollisionAlgorithmConstructionInfo& info,
                      const btCollisionObjectWrapper* first, const btCollisionObjectWrapper* second,
                      bool face_first, const Settings& settings)
-        : btActivatingCollisionAlgorithm(info, first, second), face_first_(face_first) {
-        const btCollisionObject* a = first->getCollisionObject();
-        const btCollisionObject* b = second->getCollisionObject();
-        if (!m_dispatcher->needsCollision(a, b)) return;
-        // Kept in the wrappers' order, so that points are added unswapped.
-        manifold_ = m_dispatcher->getNewManifold(a, b);
+        : OneManifoldAlgorithm(info, first, second, first->getCollisionObject(),
+                               second->getCollisionObject()),
+          face_first_(face_first) {
+        if (!manifold_) return;
         void* memory = m_dispatcher->allocateCollisionAlgorithm(sizeof(btConvexConvexAlgorithm));
         gjk_ = new (memory) btConvexConvexAlgorithm(
             manifold_, info, first, second, settings.penetration, settings.turns, settings.fewest);
     }
     ~BoxFaceAlgorithm() override {
-        if (gjk_) {
-            gjk_->~btCollisionAlgorithm();
-            m_dispatcher->freeCollisionAlgorithm(gjk_);
-        }
-        if (manifold_) m_dispatcher->releaseManifold(manifold_);
+        if (!gjk_) return;
+        gjk_->~btCollisionAlgorithm();
+        m_dispatcher->freeCollisionAlgorithm(gjk_);
     }
 
     void processCollision(const btCollisionObjectWrapper* first,
@@ -116,15 +114,6 @@ class BoxFaceAlgorithm : public btActivatingCollisionAlgorithm {
         // The two share the manifold, so a pair passing between them keeps its points.
         if (!rest_on_box(convex, box, *result)) gjk_->processCollision(first, second, info, result);
         if (manifold_->getNumContacts() > 0) result->refreshContactPoints();
-    }
-
-    btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
-                                   btManifoldResult*) override {
-        return 1;  // no continuous collision detection, as for Bullet's own convex pairs
-    }
-
-    void getAllContactManifolds(btManifoldArray& manifolds) override {
-        if (manifold_) manifolds.push_back(manifold_);
     }
 
     struct CreateFunc : btCollisionAlgorithmCreateFunc {
@@ -190,7 +179,6 @@ class BoxFaceAlgorithm : public btActivatingCollisionAlgorithm {
             result);
     }
 
-    btPersistentManifold* manifold_ = nullptr;
     btCollisionAlgorithm* gjk_ = nullptr;
     bool face_first_;
 };

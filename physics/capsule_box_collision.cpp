@@ -1,11 +1,11 @@
 #include "capsule_box_collision.h"
 
-#include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
 #include <BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h>
 #include <btBulletCollisionCommon.h>
 
 #include "ball_contact.h"
 #include "contact_insertion.h"
+#include "one_manifold_algorithm.h"
 
 namespace physhand {
 
@@ -59,20 +59,15 @@ BallContact segment_box_contact(const btVector3& a, const btVector3& b, btScalar
     return inner.distance < end.distance - kDeeper ? inner : end;
 }
 
-class CapsuleBoxAlgorithm : public btActivatingCollisionAlgorithm {
+class CapsuleBoxAlgorithm : public OneManifoldAlgorithm {
   public:
     CapsuleBoxAlgorithm(const btCollisionAlgorithmConstructionInfo& info,
                         const btCollisionObjectWrapper* first,
                         const btCollisionObjectWrapper* second, bool box_first)
-        : btActivatingCollisionAlgorithm(info, first, second), box_first_(box_first) {
-        const btCollisionObject* capsule = (box_first ? second : first)->getCollisionObject();
-        const btCollisionObject* box = (box_first ? first : second)->getCollisionObject();
-        if (m_dispatcher->needsCollision(capsule, box))
-            manifold_ = m_dispatcher->getNewManifold(capsule, box);
-    }
-    ~CapsuleBoxAlgorithm() override {
-        if (manifold_) m_dispatcher->releaseManifold(manifold_);
-    }
+        : OneManifoldAlgorithm(info, first, second,
+                               (box_first ? second : first)->getCollisionObject(),
+                               (box_first ? first : second)->getCollisionObject()),
+          box_first_(box_first) {}
 
     void processCollision(const btCollisionObjectWrapper* first,
                           const btCollisionObjectWrapper* second, const btDispatcherInfo&,
@@ -103,15 +98,6 @@ class CapsuleBoxAlgorithm : public btActivatingCollisionAlgorithm {
         if (manifold_->getNumContacts() > 0) result->refreshContactPoints();
     }
 
-    btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
-                                   btManifoldResult*) override {
-        return 1;  // no continuous collision detection, as for Bullet's own convex pairs
-    }
-
-    void getAllContactManifolds(btManifoldArray& manifolds) override {
-        if (manifold_) manifolds.push_back(manifold_);
-    }
-
     struct CreateFunc : btCollisionAlgorithmCreateFunc {
         btCollisionAlgorithm* CreateCollisionAlgorithm(
             btCollisionAlgorithmConstructionInfo& info, const btCollisionObjectWrapper* first,
@@ -123,7 +109,6 @@ class CapsuleBoxAlgorithm : public btActivatingCollisionAlgorithm {
     };
 
   private:
-    btPersistentManifold* manifold_ = nullptr;
     bool box_first_;
 };
 
