@@ -45,15 +45,21 @@ btScalar separation(const btConvexShape& convex, const btTransform& pose, const 
     return normal.dot(lowest_point(convex, pose, -normal)) - offset;
 }
 
-// The convex's lowest points toward `plane` for directions tilted a little off its normal.
+// The convex's lowest points toward a plane for directions tilted a little off its normal,
+// diagonally to the convex's own axes: along an axis, a flat side's corners tie, and a brick
+// square on the face gave three of its four.
 std::array<btVector3, kTilts> lowest_points(const btConvexShape& convex, const btTransform& pose,
                                             const btVector3& normal) {
-    btVector3 side, other_side;
-    btPlaneSpace1(normal, side, other_side);
+    const btMatrix3x3& axes = pose.getBasis();
+    btVector3 side = axes.getColumn(0) - normal * normal.dot(axes.getColumn(0));
+    if (side.length2() < btScalar(0.25))
+        side = axes.getColumn(2) - normal * normal.dot(axes.getColumn(2));
+    side.normalize();
+    const btVector3 other_side = normal.cross(side);
     const btScalar tilt = btMin(kMostTilt, kTiltReach / convex.getAngularMotionDisc());
     std::array<btVector3, kTilts> points;
     for (int k = 0; k < kTilts; ++k) {
-        const btScalar about = SIMD_2_PI * static_cast<btScalar>(k) / kTilts;
+        const btScalar about = SIMD_2_PI * (static_cast<btScalar>(k) + btScalar(0.5)) / kTilts;
         const btVector3 down =
             -normal * btCos(tilt) + (side * btCos(about) + other_side * btSin(about)) * btSin(tilt);
         points[k] = lowest_point(convex, pose, down);

@@ -3,6 +3,9 @@
 #include <btBulletCollisionCommon.h>
 #include <gtest/gtest.h>
 
+#include <set>
+#include <utility>
+
 namespace physhand {
 namespace {
 
@@ -25,8 +28,11 @@ class BoxFace : public ::testing::TestWithParam<bool> {
     const btPersistentManifold& collide(btCollisionShape& shape, const btTransform& pose) {
         convex_.setCollisionShape(&shape);
         convex_.setWorldTransform(box_pose_ * pose);
-        world_.addCollisionObject(GetParam() ? &box_ : &convex_);
-        world_.addCollisionObject(GetParam() ? &convex_ : &box_);
+        box_.setWorldTransform(box_pose_);
+        if (world_.getNumCollisionObjects() == 0) {
+            world_.addCollisionObject(GetParam() ? &box_ : &convex_);
+            world_.addCollisionObject(GetParam() ? &convex_ : &box_);
+        }
         world_.performDiscreteCollisionDetection();
         EXPECT_EQ(dispatcher_.getNumManifolds(), 1);
         return *dispatcher_.getManifoldByIndexInternal(0);
@@ -47,8 +53,8 @@ class BoxFace : public ::testing::TestWithParam<bool> {
                (m.getBody0() == &box_ ? -p.m_normalWorldOnB : p.m_normalWorldOnB);
     }
 
-    const btTransform box_pose_{btQuaternion(btVector3(1, 2, 3).normalized(), 0.4f),
-                                btVector3(0.1f, 0.75f, -0.2f)};
+    btTransform box_pose_{btQuaternion(btVector3(1, 2, 3).normalized(), 0.4f),
+                          btVector3(0.1f, 0.75f, -0.2f)};
     btCylinderShapeX rod_shape_{btVector3(kRodHalfLength, kRodRadius, kRodRadius)};
 
   private:
@@ -83,7 +89,8 @@ TEST_P(BoxFace, ARodLyingOnAFaceRestsOnBothEndsOfItsLowestLine) {
     EXPECT_NEAR(most_x, 0.02f + (kRodHalfLength - kMargin), 1e-5);
 }
 
-// A brick-shaped hull on its face rests on the corners of that face.
+// A brick-shaped hull on its face rests on the four corners of that face, on a turned box and
+// on one square with the world (where a brick square on it tied at its corners).
 TEST_P(BoxFace, AHullOnAFaceRestsOnTheCornersOfItsLowestFace) {
     btConvexHullShape brick;
     for (const btScalar x : {-0.04f, 0.04f}) {
@@ -95,16 +102,22 @@ TEST_P(BoxFace, AHullOnAFaceRestsOnTheCornersOfItsLowestFace) {
     const btScalar depth = 0.0003f;
     const btTransform pose(btQuaternion::getIdentity(),
                            btVector3(-0.1f, kHalf.y() + 0.01f + kMargin - depth, 0.05f));
-    const btPersistentManifold& m = collide(brick, pose);
-    ASSERT_EQ(m.getNumContacts(), 4);
-    for (int i = 0; i < m.getNumContacts(); ++i) {
-        const btManifoldPoint& p = m.getContactPoint(i);
-        EXPECT_NEAR(p.getDistance(), -depth, 2e-6);
-        // The hull collides its margin outside its points: its lowest face is the face of
-        // its points, moved down by the margin.
-        const btVector3 corner = on_convex(m, p);
-        EXPECT_NEAR(btFabs(corner.x() + 0.1f), 0.04f, 1e-5);
-        EXPECT_NEAR(btFabs(corner.z() - 0.05f), 0.02f, 1e-5);
+    for (const btTransform& box_pose : {box_pose_, btTransform::getIdentity()}) {
+        box_pose_ = box_pose;
+        const btPersistentManifold& m = collide(brick, pose);
+        ASSERT_EQ(m.getNumContacts(), 4);
+        std::set<std::pair<bool, bool>> corners;
+        for (int i = 0; i < m.getNumContacts(); ++i) {
+            const btManifoldPoint& p = m.getContactPoint(i);
+            EXPECT_NEAR(p.getDistance(), -depth, 2e-6);
+            // The hull collides its margin outside its points: its lowest face is the face of
+            // its points, moved down by the margin.
+            const btVector3 corner = on_convex(m, p);
+            EXPECT_NEAR(btFabs(corner.x() + 0.1f), 0.04f, 1e-5);
+            EXPECT_NEAR(btFabs(corner.z() - 0.05f), 0.02f, 1e-5);
+            corners.insert({corner.x() > -0.1f, corner.z() > 0.05f});
+        }
+        EXPECT_EQ(corners.size(), 4u);
     }
 }
 
