@@ -170,10 +170,12 @@ class BoxFaceAlgorithm : public OneManifoldAlgorithm {
         const btTransform& box_pose = box_wrap.getWorldTransform();
         const btVector3 half = static_cast<const btBoxShape&>(*box_wrap.getCollisionShape())
                                    .getHalfExtentsWithMargin();
-        const auto [plane, axis] =
+        // Not a structured binding: clang before 16 cannot capture one in a lambda.
+        const std::pair<Plane, int> face =
             facing_face(convex, convex_wrap.getWorldTransform(), box_pose, half);
+        const int axis = face.second;
         return rest_on(
-            convex_wrap, plane,
+            convex_wrap, face.first,
             [&](const btVector3& point) {
                 const btVector3 local = box_pose.invXform(point);
                 for (int other = 0; other < 3; ++other) {
