@@ -136,20 +136,28 @@ class BoxFaceAlgorithm : public OneManifoldAlgorithm {
     };
 
   private:
-    // Adds the convex's lowest points that lie on the face (`on_face`) where it lies on the
-    // face's plane; whether that is all GJK need not look for: the convex is apart from the
-    // plane, or all of them lie on the face. Where some lie beyond it (over the box's edge),
-    // GJK adds what they miss.
-    template <typename OnFace>
-    bool rest_on(const btCollisionObjectWrapper& convex_wrap, const Plane& plane, OnFace on_face,
-                 btManifoldResult& result) const {
+    // Adds the convex's lowest points that lie on the box's face it lies on; whether that is
+    // all GJK need not look for: the convex is apart from the face's plane, or all of them lie
+    // on the face. Where some lie beyond it (over the box's edge), GJK adds what they miss.
+    bool rest_on_box(const btCollisionObjectWrapper& convex_wrap,
+                     const btCollisionObjectWrapper& box_wrap, btManifoldResult& result) const {
+        const auto& convex = static_cast<const btConvexShape&>(*convex_wrap.getCollisionShape());
+        const btTransform& convex_pose = convex_wrap.getWorldTransform();
+        const btTransform& box_pose = box_wrap.getWorldTransform();
+        const btVector3 half = static_cast<const btBoxShape&>(*box_wrap.getCollisionShape())
+                                   .getHalfExtentsWithMargin();
+        const auto [plane, axis] = facing_face(convex, convex_pose, box_pose, half);
         if (plane.separation > manifold_->getContactBreakingThreshold()) return true;
         if (plane.separation < -kFaceDepth) return false;
-        const auto& convex = static_cast<const btConvexShape&>(*convex_wrap.getCollisionShape());
         bool all_on_face = true;
-        for (const btVector3& point :
-             lowest_points(convex, convex_wrap.getWorldTransform(), plane.normal)) {
-            if (!on_face(point)) {
+        for (const btVector3& point : lowest_points(convex, convex_pose, plane.normal)) {
+            const btVector3 local = box_pose.invXform(point);
+            bool on_face = true;
+            for (int other = 0; other < 3; ++other) {
+                if (other != axis && btFabs(local[other]) > half[other] + kEdgeSlack)
+                    on_face = false;
+            }
+            if (!on_face) {
                 all_on_face = false;
                 continue;
             }
@@ -162,29 +170,6 @@ class BoxFaceAlgorithm : public OneManifoldAlgorithm {
             }
         }
         return all_on_face;
-    }
-
-    bool rest_on_box(const btCollisionObjectWrapper& convex_wrap,
-                     const btCollisionObjectWrapper& box_wrap, btManifoldResult& result) const {
-        const auto& convex = static_cast<const btConvexShape&>(*convex_wrap.getCollisionShape());
-        const btTransform& box_pose = box_wrap.getWorldTransform();
-        const btVector3 half = static_cast<const btBoxShape&>(*box_wrap.getCollisionShape())
-                                   .getHalfExtentsWithMargin();
-        // Not a structured binding: clang before 16 cannot capture one in a lambda.
-        const std::pair<Plane, int> face =
-            facing_face(convex, convex_wrap.getWorldTransform(), box_pose, half);
-        const int axis = face.second;
-        return rest_on(
-            convex_wrap, face.first,
-            [&](const btVector3& point) {
-                const btVector3 local = box_pose.invXform(point);
-                for (int other = 0; other < 3; ++other) {
-                    if (other != axis && btFabs(local[other]) > half[other] + kEdgeSlack)
-                        return false;
-                }
-                return true;
-            },
-            result);
     }
 
     btCollisionAlgorithm* gjk_ = nullptr;
