@@ -83,11 +83,8 @@ std::pair<Plane, int> facing_face(const btConvexShape& convex, const btTransform
     return best;
 }
 
-struct Settings {
-    btConvexPenetrationDepthSolver* penetration;
-    int turns;  // GJK's perturbations, while the manifold holds fewer than `fewest` points
-    int fewest;
-};
+// GJK's penetration solver: it keeps no state between pairs.
+btGjkEpaPenetrationDepthSolver g_penetration;
 
 // A cylinder or a convex hull against a box, either first.
 class BoxFaceAlgorithm : public OneManifoldAlgorithm {
@@ -95,14 +92,14 @@ class BoxFaceAlgorithm : public OneManifoldAlgorithm {
     // The manifold is kept in the wrappers' order, so that points are added unswapped.
     BoxFaceAlgorithm(const btCollisionAlgorithmConstructionInfo& info,
                      const btCollisionObjectWrapper* first, const btCollisionObjectWrapper* second,
-                     bool face_first, const Settings& settings)
+                     bool face_first)
         : OneManifoldAlgorithm(info, first, second, first->getCollisionObject(),
                                second->getCollisionObject()),
           face_first_(face_first) {
         if (!manifold_) return;
         void* memory = m_dispatcher->allocateCollisionAlgorithm(sizeof(btConvexConvexAlgorithm));
-        gjk_ = new (memory) btConvexConvexAlgorithm(
-            manifold_, info, first, second, settings.penetration, settings.turns, settings.fewest);
+        gjk_ = new (memory) btConvexConvexAlgorithm(manifold_, info, first, second, &g_penetration,
+                                                    kPerturbationTurns, kFewestPoints);
     }
     ~BoxFaceAlgorithm() override {
         if (!gjk_) return;
@@ -123,16 +120,13 @@ class BoxFaceAlgorithm : public OneManifoldAlgorithm {
     }
 
     struct CreateFunc : btCollisionAlgorithmCreateFunc {
-        explicit CreateFunc(const Settings& s, bool face_first) : settings(s) {
-            m_swapped = face_first;
-        }
+        explicit CreateFunc(bool face_first) { m_swapped = face_first; }
         btCollisionAlgorithm* CreateCollisionAlgorithm(
             btCollisionAlgorithmConstructionInfo& info, const btCollisionObjectWrapper* first,
             const btCollisionObjectWrapper* second) override {
             void* memory = info.m_dispatcher1->allocateCollisionAlgorithm(sizeof(BoxFaceAlgorithm));
-            return new (memory) BoxFaceAlgorithm(info, first, second, m_swapped, settings);
+            return new (memory) BoxFaceAlgorithm(info, first, second, m_swapped);
         }
-        Settings settings;
     };
 
   private:
@@ -179,11 +173,8 @@ class BoxFaceAlgorithm : public OneManifoldAlgorithm {
 }  // namespace
 
 void register_box_face_collision(btCollisionDispatcher& dispatcher) {
-    static btGjkEpaPenetrationDepthSolver penetration;
-    static BoxFaceAlgorithm::CreateFunc convex_first(
-        {&penetration, kPerturbationTurns, kFewestPoints}, false);
-    static BoxFaceAlgorithm::CreateFunc box_first({&penetration, kPerturbationTurns, kFewestPoints},
-                                                  true);
+    static BoxFaceAlgorithm::CreateFunc convex_first(false);
+    static BoxFaceAlgorithm::CreateFunc box_first(true);
     for (const int convex : {CYLINDER_SHAPE_PROXYTYPE, CONVEX_HULL_SHAPE_PROXYTYPE}) {
         dispatcher.registerCollisionCreateFunc(convex, BOX_SHAPE_PROXYTYPE, &convex_first);
         dispatcher.registerCollisionCreateFunc(BOX_SHAPE_PROXYTYPE, convex, &box_first);
