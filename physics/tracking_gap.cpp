@@ -15,7 +15,8 @@ constexpr double kMomentumTime = 0.15;  // s
 // third of gravity: a held cube never feels a jolt), and never shorter than the floor, so a
 // small difference is not snapped away either. Unlike a critically damped approach, whose
 // tail took 1.1 s to bring a 15 cm difference within 5 mm (stress seed 74), it is over at D
-// (0.54 s for 15 cm, the most a reacquisition eases: a larger jump re-seats the hand).
+// (0.54 s for 15 cm; Simulation re-seats the hand instead for a ghost back further than a
+// hand could have gone while lost).
 constexpr double kMaxCorrectionAcceleration = 3.0;  // m/s^2
 constexpr double kMinCorrectionTime = 0.08;         // s
 constexpr double kPeakShape = 5.7735;               // max |s''(u)|, at u = 0.5 -+ sqrt(3)/6
