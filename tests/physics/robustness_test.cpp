@@ -47,11 +47,11 @@ TEST(Robustness, ALongDropoutLetsGoGently) {
 // A free hand lost as it nears something comes back eased onto its ghost rather than swept
 // there at up to 4 m/s: lost while reaching for the cube (0.85-1.15 s), it knocked the cube at
 // 1.3 m/s; lost while flicking the ball (1.52-1.82 s), whose flick it misses, it came back 13
-// cm on, hit the ball on its way there and flung it 8 m. Eased back, it pushes the ball on no
-// faster than the flick would have (the table runs on, so that the ball's speed is the
-// push's, not its fall's). It is never re-seated past the ball: it was, and never touched it,
-// when the easing left it 15 cm from its ghost, and when it came back 15.1 cm on after 233 ms
-// lost in a flick 1.4 times as fast.
+// cm on, hit the ball on its way there and flung it 8 m. Eased back, it pushes the ball on
+// along the table at under 1 m/s (the flick's ghost sweeps at 0.8 m/s; the table runs on, so
+// that the ball's speed is the push's, not its fall's). It is never re-seated past the ball:
+// it was, and never touched it, when the easing left it 15 cm from its ghost, and when it came
+// back 15.1 cm on after 233 ms lost in a flick 1.4 times as fast.
 TEST(Robustness, AHandLostNearSomethingIsNotSweptIntoItOnReturn) {
     const RunResult reach = run_scene(lift_hold_with_dropout(0.85, 1.15), RunOptions{});
     EXPECT_TRUE(reach.success) << reach.predicates[0].detail;
