@@ -325,10 +325,11 @@ void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input, double 
     if (valid) {
         // A hand coming back from a loss is compared with where it was predicted to be.
         const bool was_lost = slot.have_ghost && !slot.tracked && slot.simulated;
+        const double since_tracked = time_s_ - slot.last_tracked_time;
         // Before anything reads the sample: the hand is built from it, the gate and the
         // jump checks compare it, and a gated hand is it.
         if (settings_.drive.smoothing.fit_skeleton) {
-            const double dt = slot.have_ghost ? time_s_ - slot.last_tracked_time : 0.0;
+            const double dt = slot.have_ghost ? since_tracked : 0.0;
             sample = slot.skeleton.apply(sample, dt);
         }
         const HandPose& last = was_lost ? slot.target : slot.ghost;
@@ -337,16 +338,16 @@ void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input, double 
         const double jump =
             slot.have_ghost ? (sample[Joint::Wrist].position - last[Joint::Wrist].position).norm()
                             : 0.0;
-        const double lost_for = was_lost ? time_s_ - slot.last_tracked_time : 0.0;
-        const double jump_allowed = std::max(settings_.reseat_distance, kLostHandSpeed * lost_for);
+        const double jump_allowed =
+            std::max(settings_.reseat_distance, was_lost ? kLostHandSpeed * since_tracked : 0.0);
         // Held back from where it is driven (its target: an eased return holds that short of
         // the ghost, which measured here re-seated a hand easing back 14 cm on the next frame).
         const bool lost_hand =
             slot.simulated &&
             (slot.state.joints[Joint::Wrist].position - slot.target[Joint::Wrist].position).norm() >
                 settings_.reseat_distance;
-        const bool reseat = jump > jump_allowed || lost_hand ||
-                            time_s_ - slot.last_tracked_time > settings_.dropout_grace_s;
+        const bool reseat =
+            jump > jump_allowed || lost_hand || since_tracked > settings_.dropout_grace_s;
         const bool continues = slot.have_ghost && !reseat;
         slot.previous_ghost = continues ? slot.ghost : sample;
         slot.ghost = sample;
@@ -361,7 +362,7 @@ void Simulation::update_hand_gate(HandSlot& slot, const HandPose& input, double 
             // while it holds or presses something: how hard it grips is how far the ghost
             // reaches into the object, which smoothing would delay.
             // Samples are one step apart, or a whole loss apart after one.
-            const double sample_dt = was_lost ? time_s_ - slot.last_tracked_time : step_dt;
+            const double sample_dt = was_lost ? since_tracked : step_dt;
             HandPose followed =
                 slot.noise.apply(sample, sample_dt, settings_.drive.smoothing.noise_acceleration);
             if (slot.simulated && !touching) {
