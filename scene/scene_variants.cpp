@@ -124,6 +124,15 @@ Scene shifted(const Scene& input, const Vec3& offset) {
     return scene;
 }
 
+Scene heavier(const Scene& input, double factor) {
+    Scene scene = input;
+    for (Collider& c : scene.colliders) {
+        if (c.motion == Motion::Dynamic) c.mass *= factor;
+    }
+    scene.name = input.name + "/mass/" + printed("x%g", factor);
+    return scene;
+}
+
 Scene sped_up(const Scene& input, double speed) {
     Scene scene = input;
     for_each_time(scene, [speed](double t) { return t / speed; });
@@ -203,13 +212,7 @@ std::vector<SceneVariant> scene_variants(const Scene& base, const VariantOptions
         out.push_back({std::move(family), std::move(name), std::move(scene), std::move(adapted)});
     };
 
-    for (double factor : {0.3, 3.0}) {
-        Scene s = base;
-        for (Collider& c : s.colliders) {
-            if (c.motion == Motion::Dynamic) c.mass *= factor;
-        }
-        add("mass", printed("x%g", factor), std::move(s));
-    }
+    for (double factor : {0.3, 3.0}) add("mass", printed("x%g", factor), heavier(base, factor));
     {
         Scene s = base;
         for (Collider& c : s.colliders) {

@@ -44,6 +44,9 @@ Scene mirrored(const Scene& scene);
 // elsewhere: a contact-rich run's outcome can turn on the last bit of a float (the
 // robustness benchmark plays each variant at several sub-millimetre offsets).
 Scene shifted(const Scene& scene, const Vec3& offset);
+// Every dynamic collider `factor` times as heavy, the motion unchanged: a person cannot see
+// what a thing weighs and reaches for it as for the scene's own.
+Scene heavier(const Scene& scene, double factor);
 // The scene's script played `speed` times as fast.
 Scene sped_up(const Scene& scene, double speed);
 // The same, except a throw or a flick (a keyframe leg in which a wrist moves faster than

@@ -1,7 +1,8 @@
 // physhand-robustness: variant_success (docs/metrics.md). Plays every variant of the paper scenes
 // and lift_hold (scene/scene_variants) for every drive and writes the success per family
 // and overall, each failure with its cause, as CSV and Markdown, then the squeeze sweep of
-// lift_hold. `--repeat N` is the number of seeds of the noise, tracking and dropout families;
+// lift_hold and the mass sweep of every task. `--repeat N` is the number of seeds of the noise,
+// tracking and dropout families;
 // `--shifts N` plays each variant N times, the scene moved by 0, 0.44, 0.87 ... mm each time
 // (scene/scene_variants shifted): whether a contact-rich run succeeds can turn on the last bit
 // of a float, so a change is judged on many plays of each variant, not one.
@@ -31,6 +32,10 @@ const std::vector<std::string> kScenes = {"throw", "sphere", "displacement", "st
 // the reference at the 8 its stability needs on 15 g bodies.
 const std::vector<std::pair<std::string, int>> kConfigurations = {
     {"bones", 1}, {"bones", 2}, {"bones", 4}, {"implicit", 2}, {"paper", 4}, {"paper", 8}};
+
+// The mass sweep's factors: the tasks' 4 cm, 80 g cubes from 24 g (light plastic) to 400 g
+// (nearly solid iron).
+const std::vector<double> kMassFactors = {0.3, 0.5, 1.0, 1.5, 2.0, 3.0, 5.0};
 
 // The k-th play's offset: sub-millimetre, along no axis.
 Vec3 shift_of(int k) {
@@ -62,6 +67,15 @@ std::string cause_of(const RunResult& r) {
     }
     if (r.metrics.nonfinite_count > 0) cause += "; non-finite state";
     return cause;
+}
+
+// How a column ("drive/substeps") plays a scene.
+RunOptions run_of(const std::string& column) {
+    const auto slash = column.find('/');
+    RunOptions run;
+    run.drive = column.substr(0, slash);
+    run.substeps = std::stoi(column.substr(slash + 1));
+    return run;
 }
 
 std::string csv_field(const std::string& text) {
@@ -159,11 +173,7 @@ int main(int argc, char** argv) {
         for (double curl = 0.3; curl < 1.05; curl += 0.1) {
             md << "| " << std::to_string(curl).substr(0, 3) << " |";
             for (const std::string& c : columns) {
-                const auto slash = c.find('/');
-                RunOptions run;
-                run.drive = c.substr(0, slash);
-                run.substeps = std::stoi(c.substr(slash + 1));
-                const RunResult r = run_scene(squeezed(lift, curl), run);
+                const RunResult r = run_scene(squeezed(lift, curl), run_of(c));
                 char cell[64];
                 std::snprintf(cell, sizeof cell, " %.2f mm (shown %.2f mm), %s |",
                               r.metrics.max_penetration_mm, r.metrics.max_shown_depth_mm,
@@ -172,6 +182,44 @@ int main(int argc, char** argv) {
             }
             md << '\n';
         }
+    }
+    md << "\n### Mass\n\nEach task with every dynamic object's mass times the factor, the "
+          "motion unchanged (scene/scene_variants heavier), played at each of the "
+       << options->shifts
+       << " shifts: how many plays succeeded, then the tasks that failed in any, with how many "
+          "of their plays succeeded.\n\n| mass |";
+    for (const std::string& c : columns) md << ' ' << c << " |";
+    md << "\n|---|";
+    for (std::size_t i = 0; i < columns.size(); ++i) md << "---|";
+    md << '\n';
+    std::vector<Scene> tasks;
+    for (const std::string& name : kScenes) {
+        if (bench::selected(options->only_scenes, name))
+            tasks.push_back(load_scene(options->scenes_dir / (name + ".json")));
+    }
+    for (double factor : kMassFactors) {
+        md << "| x" << factor << " |";
+        for (const std::string& c : columns) {
+            Tally all;
+            std::string failed;
+            for (const Scene& task : tasks) {
+                const Scene heavy = heavier(task, factor);
+                Tally t;
+                for (int shift = 0; shift < options->shifts; ++shift) {
+                    ++t.played;
+                    t.passed += run_scene(shifted(heavy, shift_of(shift)), run_of(c)).success;
+                }
+                all.played += t.played;
+                all.passed += t.passed;
+                if (t.passed < t.played) {
+                    failed += (failed.empty() ? " (" : ", ") + task.name + " " +
+                              std::to_string(t.passed) + "/" + std::to_string(t.played);
+                }
+            }
+            md << ' ' << all.passed << '/' << all.played << (failed.empty() ? "" : failed + ")")
+               << " |";
+        }
+        md << '\n';
     }
     std::ofstream(options->out / "robustness.md") << md.str();
     std::cout << md.str();

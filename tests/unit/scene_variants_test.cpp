@@ -196,6 +196,27 @@ TEST(SceneVariants, AnotherSizeRestsWhereItWasAndIsGrippedAsDeep) {
     EXPECT_EQ(thrown.find_collider("pyramid_20")->shape.half_extents.x(), 0.025);
 }
 
+// Only what moves gets heavier; the hands and everything else are as they were.
+TEST(SceneVariants, HeavierScalesTheDynamicCollidersOnly) {
+    const Scene scene = sample_scene("stack");
+    const Scene heavy = heavier(scene, 2.5);
+    ASSERT_EQ(heavy.colliders.size(), scene.colliders.size());
+    int dynamic = 0;
+    for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
+        const Collider& before = scene.colliders[i];
+        const Collider& after = heavy.colliders[i];
+        const bool moves = before.motion == Motion::Dynamic;
+        dynamic += moves ? 1 : 0;
+        EXPECT_EQ(after.mass, moves ? before.mass * 2.5 : before.mass) << before.id;
+        EXPECT_EQ(after.pose.position, before.pose.position) << before.id;
+        EXPECT_EQ(after.friction, before.friction) << before.id;
+    }
+    EXPECT_GE(dynamic, 3);
+    EXPECT_EQ(heavy.hand(HandSide::Right)->keyframes.size(),
+              scene.hand(HandSide::Right)->keyframes.size());
+    EXPECT_EQ(heavy.name, "stack/mass/x2.5");
+}
+
 TEST(SceneVariants, ASqueezeClosesTheFinalGripOnly) {
     const Scene scene = sample_scene("lift_hold");
     const Scene tight = squeezed(scene, 0.8);
