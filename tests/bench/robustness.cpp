@@ -1,11 +1,11 @@
 // physhand-robustness: variant_success (docs/metrics.md). Plays every variant of the paper scenes
 // and lift_hold (scene/scene_variants) for every drive and writes the success per family
 // and overall, each failure with its cause, as CSV and Markdown, then the squeeze sweep of
-// lift_hold and the mass sweep of every task. `--repeat N` is the number of seeds of the noise,
-// tracking and dropout families;
-// `--shifts N` plays each variant N times, the scene moved by 0, 0.44, 0.87 ... mm each time
-// (scene/scene_variants shifted): whether a contact-rich run succeeds can turn on the last bit
-// of a float, so a change is judged on many plays of each variant, not one.
+// lift_hold and the mass sweep of every task. `--repeat N` is the number of seeds of the
+// noise, tracking and dropout families; `--shifts N` plays each variant N times, the scene
+// moved by 0, 0.44, 0.87 ... mm each time (scene/scene_variants shifted): whether a
+// contact-rich run succeeds can turn on the last bit of a float, so a change is judged on many
+// plays of each variant, not one.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -33,8 +33,8 @@ const std::vector<std::string> kScenes = {"throw", "sphere", "displacement", "st
 const std::vector<std::pair<std::string, int>> kConfigurations = {
     {"bones", 1}, {"bones", 2}, {"bones", 4}, {"implicit", 2}, {"paper", 4}, {"paper", 8}};
 
-// The mass sweep's factors: the tasks' 4 cm, 80 g cubes from 24 g (light plastic) to 400 g
-// (nearly solid iron).
+// The mass sweep's factors: the 4 cm, 80 g cubes the hand holds from 24 g (light plastic) to
+// 400 g (nearly solid iron), and everything else that moves with them.
 const std::vector<double> kMassFactors = {0.3, 0.5, 1.0, 1.5, 2.0, 3.0, 5.0};
 
 // The k-th play's offset: sub-millimetre, along no axis.
