@@ -45,6 +45,9 @@ XRAPI_ATTR XrResult XRAPI_CALL SetHandDrivePHYSHAND(XrSession session,
             case raw(XR_HAND_DRIVE_KIND_BONES_PHYSHAND):
                 name = "bones";
                 break;
+            case raw(XR_HAND_DRIVE_KIND_JOINTED_PHYSHAND):
+                name = "jointed";
+                break;
             default:
                 return XR_ERROR_VALIDATION_FAILURE;
         }

@@ -58,6 +58,8 @@ const std::vector<DriveSettings>& builtin_drives() {
         {"implicit", BodyModel::JointSpheres, DriveLaw::Implicit, 20000.0, 90.0, false, 20.0, 2,
          kSmoothing},
         {"paper", BodyModel::JointSpheres, DriveLaw::Explicit, 1000.0, 20.0, false, 0.0, 4, {}},
+        {"jointed", BodyModel::BoneCapsules, DriveLaw::Implicit, 20000.0, 90.0, true, 20.0, 1,
+         kSmoothing, true},
     };
     return drives;
 }

@@ -33,6 +33,8 @@ struct DriveSettings {
     double force_limit = 0.0;
     int substeps = 4;          // per 90 Hz frame
     GhostSmoothing smoothing;  // of the ghost before the drive follows it
+    // Bone capsules only: each bone stays joined to the body before it (bone_joints).
+    bool joined_bones = false;
 };
 
 // No drive force exceeds this, whatever the limit: past it, an explicit drive's overshoot

@@ -185,9 +185,14 @@ PhysicalHand::PhysicalHand(HandSide side, const DriveSettings& drive, const Hand
         const std::optional<Joint> before = joint_parent(b.anchor);
         if (drive.body_model != BodyModel::BoneCapsules || !before) continue;
         const Body& parent = *bodies_[static_cast<std::size_t>(body_of_joint_[index_of(*before)])];
-        if (&parent != &b) {
-            b.end_in_parent = target_of(parent, source).inverse() * source[b.anchor].position;
-        }
+        if (&parent == &b) continue;
+        b.end_in_parent = target_of(parent, source).inverse() * source[b.anchor].position;
+        // A capsule's centre lies halfway along its bone.
+        const Vec3 start = b.offset.inverse().position;
+        joints_.push_back({parent.rigid.get(), b.rigid.get(), *b.end_in_parent, start, -start,
+                           parent.end_in_parent
+                               ? std::optional<Vec3>(parent.offset.inverse().position)
+                               : std::nullopt});
     }
 }
 
@@ -335,6 +340,10 @@ void PhysicalHand::note_touch(int body, Motion motion, const Vec3& normal, doubl
     ++b.movable_touches;
     b.movable_gap = std::min(b.movable_gap, gap);
     if (holds) b.holding = true;
+}
+
+void PhysicalHand::close_joint_gaps(double h) {
+    if (drive_.joined_bones) physhand::close_joint_gaps(joints_, h);
 }
 
 void PhysicalHand::set_contact_response(bool enabled) {

@@ -4,6 +4,7 @@
 #include <memory>
 #include <vector>
 
+#include "bone_joints.h"
 #include "drive.h"
 #include "hand_skeleton.h"
 #include "simulation.h"
@@ -55,6 +56,9 @@ class PhysicalHand {
     // the body, whether the body holds it (Simulation::note_touches), its velocity there.
     void note_touch(int body, Motion motion, const Vec3& normal, double gap, bool holds,
                     const Vec3& velocity);
+    // With joined bones (DriveSettings::joined_bones), puts every bone back on the body
+    // before it after a substep of length h.
+    void close_joint_gaps(double h);
     // While re-seating, bodies pass through colliders until they are clear of them.
     void set_contact_response(bool enabled);
     bool contact_response() const { return contact_response_; }
@@ -101,6 +105,7 @@ class PhysicalHand {
     HandSide side_;
     DriveSettings drive_;
     std::vector<std::unique_ptr<Body>> bodies_;
+    std::vector<BoneJoint> joints_;  // bone capsules: parents before their children
     std::array<int, kJointCount> body_of_joint_{};
     std::array<double, kJointCount> collision_radius_{};  // of the joint's body, at the joint
     World* world_ = nullptr;

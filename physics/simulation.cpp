@@ -580,6 +580,9 @@ void Simulation::step_substeps(int substeps) {
             last_speeds_.add(speeds);
             ++last_substeps_;
             collect_contacts(contact_index, collider_index);
+            for (auto& slot : hands_) {
+                if (slot->simulated) slot->body->close_joint_gaps(h / pieces);
+            }
         }
     }
     world_->finish_kinematic_motion();

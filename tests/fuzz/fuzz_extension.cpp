@@ -68,10 +68,11 @@ constexpr std::array<XrPhysicalColliderMotionPHYSHAND, 5> kMotions = {
     XR_PHYSICAL_COLLIDER_MOTION_DYNAMIC_PHYSHAND,  static_cast<XrPhysicalColliderMotionPHYSHAND>(0),
     XR_PHYSICAL_COLLIDER_MOTION_MAX_ENUM_PHYSHAND,
 };
-constexpr std::array<XrHandDriveKindPHYSHAND, 6> kDrives = {
-    XR_HAND_DRIVE_KIND_DEFAULT_PHYSHAND,     XR_HAND_DRIVE_KIND_PAPER_PHYSHAND,
-    XR_HAND_DRIVE_KIND_IMPLICIT_PHYSHAND,    XR_HAND_DRIVE_KIND_BONES_PHYSHAND,
-    static_cast<XrHandDriveKindPHYSHAND>(4), XR_HAND_DRIVE_KIND_MAX_ENUM_PHYSHAND,
+constexpr std::array<XrHandDriveKindPHYSHAND, 7> kDrives = {
+    XR_HAND_DRIVE_KIND_DEFAULT_PHYSHAND,  XR_HAND_DRIVE_KIND_PAPER_PHYSHAND,
+    XR_HAND_DRIVE_KIND_IMPLICIT_PHYSHAND, XR_HAND_DRIVE_KIND_BONES_PHYSHAND,
+    XR_HAND_DRIVE_KIND_JOINTED_PHYSHAND,  static_cast<XrHandDriveKindPHYSHAND>(5),
+    XR_HAND_DRIVE_KIND_MAX_ENUM_PHYSHAND,
 };
 
 [[noreturn]] void fail(const char* call, const char* what, XrResult result) {

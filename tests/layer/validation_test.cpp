@@ -496,7 +496,7 @@ TEST_F(Validation, SetHandDriveRejectsBadInput) {
     const std::vector<Case<DriveInfo>> cases = {
         {"wrong type", [](DriveInfo& i) { i.type = XR_TYPE_SESSION_BEGIN_INFO; },
          XR_ERROR_VALIDATION_FAILURE},
-        {"drive kind 4", [](DriveInfo& i) { i.drive = XrHandDriveKindPHYSHAND(4); },
+        {"drive kind 5", [](DriveInfo& i) { i.drive = XrHandDriveKindPHYSHAND(5); },
          XR_ERROR_VALIDATION_FAILURE},
         {"drive kind -1", [](DriveInfo& i) { set_raw(i.drive, -1); }, XR_ERROR_VALIDATION_FAILURE},
         {"drive kind max", [](DriveInfo& i) { i.drive = XR_HAND_DRIVE_KIND_MAX_ENUM_PHYSHAND; },
@@ -513,6 +513,8 @@ TEST_F(Validation, SetHandDriveRejectsBadInput) {
         {"64 substeps", [](DriveInfo& i) { i.substeps = 64; }, XR_SUCCESS},
         {"paper", [](DriveInfo& i) { i.drive = XR_HAND_DRIVE_KIND_PAPER_PHYSHAND; }, XR_SUCCESS},
         {"implicit", [](DriveInfo& i) { i.drive = XR_HAND_DRIVE_KIND_IMPLICIT_PHYSHAND; },
+         XR_SUCCESS},
+        {"jointed", [](DriveInfo& i) { i.drive = XR_HAND_DRIVE_KIND_JOINTED_PHYSHAND; },
          XR_SUCCESS},
         {"bones with gains",
          [](DriveInfo& i) {

@@ -65,7 +65,7 @@ extern "C" {
 
 #define XR_PHYSHAND_physical_hands 1
 /* Version 2 adds XrHandCollisionShapesPHYSHAND; version 1's behaviour is unchanged. */
-#define XR_PHYSHAND_physical_hands_SPEC_VERSION 3
+#define XR_PHYSHAND_physical_hands_SPEC_VERSION 4
 #define XR_PHYSHAND_PHYSICAL_HANDS_EXTENSION_NAME "XR_PHYSHAND_physical_hands"
 
 XR_DEFINE_HANDLE(XrPhysicalColliderPHYSHAND)
@@ -117,6 +117,9 @@ typedef enum XrHandDriveKindPHYSHAND {
     XR_HAND_DRIVE_KIND_IMPLICIT_PHYSHAND = 2,
     /* Implicit drive of a palm box and one capsule per bone, orientation driven too. */
     XR_HAND_DRIVE_KIND_BONES_PHYSHAND = 3,
+    /* Since spec version 4: the bones drive with every bone kept joined to the one before it
+    ** and to the palm. */
+    XR_HAND_DRIVE_KIND_JOINTED_PHYSHAND = 4,
     XR_HAND_DRIVE_KIND_MAX_ENUM_PHYSHAND = 0x7FFFFFFF
 } XrHandDriveKindPHYSHAND;
 

@@ -1,0 +1,88 @@
+#include "bone_joints.h"
+
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <utility>
+
+#include "bullet_convert.h"
+
+namespace physhand {
+
+namespace {
+
+// Sweeps over the hand's joints per substep. Robustness, bones/1 joined, 800 plays of
+// displacement and throw: 10 sweeps 574 of 640, 20 sweeps 545 (the throw's release aimed
+// differently); every sample scene's joints within 0.3 mm of each other after 10.
+constexpr int kSweeps = 10;
+// Gaps below this are not worth a move (m).
+constexpr double kClosed = 1e-7;
+// How far a joint gives before it is closed (m): only what lies beyond it is closed.
+// Robustness, 3200 plays, against 3061 unjoined: 2967 with none, 3020 at 0.3 mm, 3016 at
+// 0.5, 2971 at 0.8 (closing every 0.1 mm a noisy ghost's bones change in length, the
+// joints shook the grips the throw and the stack need).
+constexpr double kGive = 0.0003;
+
+// Moves `body` rigidly so that its `point` lands on `to`: turned about `pivot` toward it
+// first, where there is one, then slid the rest of the way.
+void move_point(btRigidBody& body, const std::optional<Vec3>& pivot, const Vec3& point,
+                const Vec3& to) {
+    Pose pose = from_bt(body.getWorldTransform());
+    Vec3 moved = point;
+    if (pivot) {
+        const Vec3 from = point - *pivot;
+        const Vec3 toward = to - *pivot;
+        if (from.norm() > kClosed && toward.norm() > kClosed) {
+            const Quat turn = Quat::FromTwoVectors(from, toward);
+            pose.position = *pivot + turn * (pose.position - *pivot);
+            pose.orientation = (turn * pose.orientation).normalized();
+            moved = *pivot + turn * from;
+        }
+    }
+    pose.position += to - moved;
+    body.setWorldTransform(to_bt(pose));
+}
+
+}  // namespace
+
+void close_joint_gaps(const std::vector<BoneJoint>& joints, double h) {
+    std::vector<std::pair<btRigidBody*, Pose>> before;
+    const auto remember = [&](btRigidBody* body) {
+        if (std::none_of(before.begin(), before.end(),
+                         [&](const auto& b) { return b.first == body; }))
+            before.emplace_back(body, from_bt(body->getWorldTransform()));
+    };
+    for (const BoneJoint& j : joints) {
+        remember(j.parent);
+        remember(j.child);
+    }
+    for (int sweep = 0; sweep < kSweeps; ++sweep) {
+        for (const BoneJoint& j : joints) {
+            const Pose parent = from_bt(j.parent->getWorldTransform());
+            const Pose child = from_bt(j.child->getWorldTransform());
+            const Vec3 end = parent * j.end_in_parent;
+            const Vec3 start = child * j.start_in_child;
+            const Vec3 apart = end - start;
+            const double distance = apart.norm();
+            if (distance < kGive + kClosed) continue;
+            const Vec3 gap = apart * ((distance - kGive) / distance);
+            const double child_share =
+                j.child->getInvMass() / (j.child->getInvMass() + j.parent->getInvMass());
+            move_point(*j.child, child * j.far_in_child, start, start + child_share * gap);
+            const std::optional<Vec3> parent_pivot =
+                j.parent_start ? std::optional<Vec3>(parent * *j.parent_start) : std::nullopt;
+            move_point(*j.parent, parent_pivot, end, end - (1.0 - child_share) * gap);
+        }
+    }
+    for (const auto& [body, was] : before) {
+        body->setInterpolationWorldTransform(body->getWorldTransform());
+        const Pose now = from_bt(body->getWorldTransform());
+        body->setLinearVelocity(body->getLinearVelocity() +
+                                to_bt(Vec3((now.position - was.position) / h)));
+        body->setAngularVelocity(
+            body->getAngularVelocity() +
+            to_bt(Vec3(rotation_between(was.orientation, now.orientation) / h)));
+    }
+}
+
+}  // namespace physhand
