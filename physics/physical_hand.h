@@ -91,6 +91,9 @@ class PhysicalHand {
   private:
     struct Body;
     Pose target_of(const Body& body, const HandPose& target) const;
+    // Moves each joint of joined bones toward where `goal` has it on the body before it,
+    // at most kJointRefitSpeed.
+    void refit_joints(const HandPose& goal, double h);
     // Where and how fast the drive pulls a body at `position` whose target is `goal`, moving
     // at `goal_velocity`: for a body resting on static colliders alone, no further into them
     // than kRestingPressDepth; for one pressing movable colliders without holding them,
@@ -106,6 +109,7 @@ class PhysicalHand {
     DriveSettings drive_;
     std::vector<std::unique_ptr<Body>> bodies_;
     std::vector<BoneJoint> joints_;  // bone capsules: parents before their children
+    std::vector<std::pair<std::size_t, std::size_t>> joint_bodies_;  // each joint's parent, child
     std::array<int, kJointCount> body_of_joint_{};
     std::array<double, kJointCount> collision_radius_{};  // of the joint's body, at the joint
     World* world_ = nullptr;
