@@ -67,7 +67,9 @@ void close_joint_gaps(const std::vector<BoneJoint>& joints, double h) {
         remember(j.parent);
         remember(j.child);
     }
+    bool any_moved = false;
     for (int sweep = 0; sweep < kSweeps; ++sweep) {
+        bool moved = false;
         for (const BoneJoint& j : joints) {
             const Pose parent = from_bt(j.parent->getWorldTransform());
             const Pose child = from_bt(j.child->getWorldTransform());
@@ -83,8 +85,14 @@ void close_joint_gaps(const std::vector<BoneJoint>& joints, double h) {
             const std::optional<Vec3> parent_pivot =
                 j.parent_start ? std::optional<Vec3>(parent * *j.parent_start) : std::nullopt;
             move_point(*j.parent, parent_pivot, end, end - (1.0 - child_share) * gap);
+            moved = true;
         }
+        // A sweep that closed nothing leaves the next one nothing to close either: a hand
+        // whose joints all lie within their give (any hand touching nothing) costs one sweep.
+        if (!moved) break;
+        any_moved = true;
     }
+    if (!any_moved) return;
     for (const auto& [body, was] : before) {
         body->setInterpolationWorldTransform(body->getWorldTransform());
         const Pose now = from_bt(body->getWorldTransform());
