@@ -11,9 +11,9 @@ namespace physhand {
 
 namespace {
 
-// Sweeps over the hand's joints per substep. Robustness, bones/1 joined, 800 plays of
-// displacement and throw: 10 sweeps 574 of 640, 20 sweeps 545 (the throw's release aimed
-// differently); every sample scene's joints within 0.3 mm of each other after 10.
+// Sweeps over the hand's joints per substep. Robustness, bones/1 joined with no give, 640
+// plays of displacement and throw: 10 sweeps 574, 20 sweeps 545 (the throw's release aimed
+// differently); every sample scene's joints then within 0.3 mm of each other after 10.
 constexpr int kSweeps = 10;
 // Gaps below this are not worth a move (m).
 constexpr double kClosed = 1e-7;

@@ -24,11 +24,10 @@ struct BoneJoint {
 // a substep of length h: each of the two moves its share of the gap in inverse proportion
 // to its mass (a finger caught on an edge holds the hand back as much as the hand pulls
 // it), a bone by turning about its other end (the finger bends) and then sliding what
-// turning cannot close. `joints` lists
-// parents before their children; the sweep is repeated, since moving a parent opens its
-// own joint again. Velocities change by the move over h (at most 1 m/s), as a constraint's
-// impulse would change them: moved without, the bodies would keep pressing where they were
-// pulled from.
+// turning cannot close. `joints` lists parents before their children; the sweep is
+// repeated, since moving a parent opens its own joint again. Velocities change by the move
+// over h (at most 1 m/s), as a constraint's impulse would change them: moved without, the
+// bodies would keep pressing where they were pulled from.
 void close_joint_gaps(const std::vector<BoneJoint>& joints, double h);
 
 }  // namespace physhand
