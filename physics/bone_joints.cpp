@@ -57,19 +57,17 @@ void move_point(btRigidBody& body, const std::optional<Vec3>& pivot, const Vec3&
 }  // namespace
 
 void close_joint_gaps(const std::vector<BoneJoint>& joints, double h) {
-    std::vector<std::pair<btRigidBody*, Pose>> before;
-    const auto remember = [&](btRigidBody* body) {
-        if (std::none_of(before.begin(), before.end(),
-                         [&](const auto& b) { return b.first == body; }))
-            before.emplace_back(body, from_bt(body->getWorldTransform()));
+    // Each moved body, as it was before its first move.
+    std::vector<std::pair<btRigidBody*, Pose>> moved;
+    const auto move = [&](btRigidBody& body, const std::optional<Vec3>& pivot, const Vec3& point,
+                          const Vec3& to) {
+        if (std::none_of(moved.begin(), moved.end(),
+                         [&](const auto& m) { return m.first == &body; }))
+            moved.emplace_back(&body, from_bt(body.getWorldTransform()));
+        move_point(body, pivot, point, to);
     };
-    for (const BoneJoint& j : joints) {
-        remember(j.parent);
-        remember(j.child);
-    }
-    bool any_moved = false;
     for (int sweep = 0; sweep < kSweeps; ++sweep) {
-        bool moved = false;
+        bool closed = false;
         for (const BoneJoint& j : joints) {
             const Pose parent = from_bt(j.parent->getWorldTransform());
             const Pose child = from_bt(j.child->getWorldTransform());
@@ -81,19 +79,17 @@ void close_joint_gaps(const std::vector<BoneJoint>& joints, double h) {
             const Vec3 gap = apart * ((distance - kGive) / distance);
             const double child_share =
                 j.child->getInvMass() / (j.child->getInvMass() + j.parent->getInvMass());
-            move_point(*j.child, child * j.far_in_child, start, start + child_share * gap);
+            move(*j.child, child * j.far_in_child, start, start + child_share * gap);
             const std::optional<Vec3> parent_pivot =
                 j.parent_start ? std::optional<Vec3>(parent * *j.parent_start) : std::nullopt;
-            move_point(*j.parent, parent_pivot, end, end - (1.0 - child_share) * gap);
-            moved = true;
+            move(*j.parent, parent_pivot, end, end - (1.0 - child_share) * gap);
+            closed = true;
         }
         // A sweep that closed nothing leaves the next one nothing to close either: a hand
         // whose joints all lie within their give (any hand touching nothing) costs one sweep.
-        if (!moved) break;
-        any_moved = true;
+        if (!closed) break;
     }
-    if (!any_moved) return;
-    for (const auto& [body, was] : before) {
+    for (const auto& [body, was] : moved) {
         body->setInterpolationWorldTransform(body->getWorldTransform());
         const Pose now = from_bt(body->getWorldTransform());
         body->setLinearVelocity(
