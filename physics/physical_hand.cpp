@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "bullet_convert.h"
+#include "collider_shape.h"
 #include "speed_limit.h"
 #include "world.h"
 
@@ -37,9 +38,32 @@ constexpr double kRotationalInertiaRadius = 0.1;
 // (stress seeds 8, 12, 20; recovered in 0.06-0.28 s at 0.1 m/s; seed 1419 of 1459 at 0.6
 // alone). Robustness, 3200 plays: 3044 at 0.3, 3048 at 0.6 (noise family 599, 604).
 constexpr double kJointRefitSpeed = 0.6;
+// How far a joined bone capsule's far end may lie from where its ghost has it (in the frame
+// of the bone's first joint) before the capsule is rebuilt to the ghost's bone, m. At 1 mm a
+// hand under pathological tracking had its bones rebuilt nearly every frame and never came
+// back within 5 mm of its ghost (stress seed 1147; 796 rebuilds).
+constexpr double kBoneFitGive = 0.003;
 
 Joint next_joint(Joint j) {
     return static_cast<Joint>(index_of(j) + 1);
+}
+
+// A bone capsule's frame in its anchor joint's frame (centred between the anchor and the
+// next joint, its axis along the bone) and its length, as `source` places the two joints.
+struct BoneSpan {
+    Pose offset;
+    double length;
+};
+BoneSpan bone_span(const HandPose& source, Joint anchor) {
+    const Vec3 local = source[anchor].inverse() * source[next_joint(anchor)].position;
+    const double length = std::max(local.norm(), 1e-3);
+    return {Pose{local / 2, Quat::FromTwoVectors(Vec3(0, 0, -1), local / length)}, length};
+}
+
+// The sphere swept along a fast hand part's path: inside the part, so that what it sweeps
+// into touches the part too.
+btScalar swept_sphere_radius(const btCollisionShape& shape) {
+    return static_cast<btScalar>(min_half_extent(shape) * 0.8);
 }
 
 Vec3 angular_velocity_between(const Quat& from, const Quat& to, double dt) {
@@ -60,7 +84,7 @@ struct PhysicalHand::Body {
     Joint anchor;
     Pose offset;  // body frame in the anchor joint's frame
     // A bone body's joint with the body before it: where that body ends there, in its frame,
-    // as built.
+    // as built (joined bones: then as the ghost has it, fit_bones).
     std::optional<Vec3> end_in_parent;
     std::vector<Joint> carried;
     double mass;
@@ -148,17 +172,15 @@ PhysicalHand::PhysicalHand(HandSide side, const DriveSettings& drive, const Hand
             for (int bone = 0; bone < 3; ++bone) {
                 const Joint a = static_cast<Joint>(index_of(first) + bone);
                 const Joint b = next_joint(a);
-                const Vec3 local = source[a].inverse() * source[b].position;
-                const double length = std::max(local.norm(), 1e-3);
+                const BoneSpan span = bone_span(source, a);
                 const double radius = std::max(
                     std::min(source.radii[index_of(a)], source.radii[index_of(b)]), kMinRadius);
-                const Quat along = Quat::FromTwoVectors(Vec3(0, 0, -1), local / length);
                 std::vector<Joint> carried = {a};
                 if (bone == 2) carried.push_back(b);
                 for (Joint j : carried) collision_radius_[index_of(j)] = radius;
-                add(a, Pose{local / 2, along}, carried,
+                add(a, span.offset, carried,
                     std::make_unique<btCapsuleShapeZ>(static_cast<btScalar>(radius),
-                                                      static_cast<btScalar>(length)),
+                                                      static_cast<btScalar>(span.length)),
                     kBoneMass);
             }
         }
@@ -180,12 +202,11 @@ PhysicalHand::PhysicalHand(HandSide side, const DriveSettings& drive, const Hand
         r.setGravity(btVector3(0, 0, 0));
         r.setActivationState(DISABLE_DEACTIVATION);
         if (drive.body_model == BodyModel::JointSpheres) r.setAngularFactor(0.0f);
-        const double inner = min_half_extent(*b.shape);
         // Contacts found kHandContactReach ahead stop a hand part that moves less than that
         // in a substep; sweeping every faster finger as well cost a fifth of a free-moving
         // hand's step at one substep (callgrind, free_motion) and found nothing more.
         r.setCcdMotionThreshold(static_cast<btScalar>(kHandContactReach));
-        r.setCcdSweptSphereRadius(static_cast<btScalar>(inner * 0.8));
+        r.setCcdSweptSphereRadius(swept_sphere_radius(*b.shape));
         r.setUserIndex(static_cast<int>(BodyRole::Hand));
         r.setUserIndex2(index_base | static_cast<int>(i));
         const std::optional<Joint> before = joint_parent(b.anchor);
@@ -359,6 +380,47 @@ void PhysicalHand::refit_joints(const HandPose& goal, double h) {
         const double most = kJointRefitSpeed * h;
         if (step.norm() > most) step *= most / step.norm();
         joints_[i].end_in_parent += step;
+    }
+}
+
+void PhysicalHand::fit_bones(const HandPose& target) {
+    if (!drive_.joined_bones) return;
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+        Body& b = *bodies_[i];
+        if (b.shape->getShapeType() != CAPSULE_SHAPE_PROXYTYPE) continue;
+        const BoneSpan span = bone_span(target, b.anchor);
+        // The centre lies halfway to the far end.
+        if ((span.offset.position - b.offset.position).norm() * 2.0 <= kBoneFitGive) continue;
+        // The bone keeps its start where it is; its far end moves to where the ghost has it.
+        btRigidBody& r = *b.rigid;
+        const Pose was = from_bt(r.getWorldTransform());
+        const Pose now = was * b.offset.inverse() * span.offset;
+        auto shape = std::make_unique<btCapsuleShapeZ>(
+            static_cast<const btCapsuleShape&>(*b.shape).getRadius(),
+            static_cast<btScalar>(span.length));
+        // Out of the world and back, so that no contact keeps the old shape's points.
+        if (world_) world_->remove_hand_body(&r);
+        r.setCollisionShape(shape.get());
+        r.setWorldTransform(to_bt(now));
+        r.setInterpolationWorldTransform(to_bt(now));
+        r.setCcdSweptSphereRadius(swept_sphere_radius(*shape));
+        if (world_) world_->add_hand_body(&r);
+        b.shape = std::move(shape);
+        b.offset = span.offset;
+        for (std::size_t k = 0; k < joints_.size(); ++k) {
+            BoneJoint& joint = joints_[k];
+            if (joint_bodies_[k].second == i) {
+                joint.start_in_child = span.offset.inverse().position;
+                joint.far_in_child = -joint.start_in_child;
+            } else if (joint_bodies_[k].first == i) {
+                joint.end_in_parent = now.inverse() * (was * joint.end_in_parent);
+                joint.parent_start = span.offset.inverse().position;
+            }
+        }
+    }
+    for (const auto& [parent, child] : joint_bodies_) {
+        Body& c = *bodies_[child];
+        c.end_in_parent = target_of(*bodies_[parent], target).inverse() * target[c.anchor].position;
     }
 }
 

@@ -59,6 +59,12 @@ class PhysicalHand {
     // With joined bones (DriveSettings::joined_bones), puts every bone back on the body
     // before it after a substep of length h.
     void close_joint_gaps(double h);
+    // With joined bones, rebuilds each bone capsule whose far end lies more than 3 mm from
+    // where `target` has the next joint (seen from the bone's first joint), keeping its
+    // start, and places each joint on the body before it where `target` has it: a hand built
+    // from a first sample that tracking noise distorted kept capsules that no longer reached
+    // the joints they were joined at (the jitter scene's, 8 mm off).
+    void fit_bones(const HandPose& target);
     // While re-seating, bodies pass through colliders until they are clear of them.
     void set_contact_response(bool enabled);
     bool contact_response() const { return contact_response_; }

@@ -563,6 +563,9 @@ void Simulation::step_substeps(int substeps) {
             target_speed[side] = std::max(target_speed[side], moved / step_dt);
         }
     }
+    for (auto& slot : hands_) {
+        if (slot->simulated) slot->body->fit_bones(slot->target);
+    }
     ContactIndex contact_index;
     ColliderIndex collider_index;
     for (int i = 0; i < substeps; ++i) {

@@ -13,6 +13,7 @@
 #include <iostream>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,14 @@ const std::vector<double> kMassFactors = {0.3, 0.5, 1.0, 1.5, 2.0, 3.0, 5.0};
 // The k-th play's offset: sub-millimetre, along no axis.
 Vec3 shift_of(int k) {
     return Vec3(0.00037, 0.0, -0.00023) * k;
+}
+
+// Where a run left the dynamic body `id`.
+Vec3 final_position(const RunResult& r, const std::string& id) {
+    const auto body = std::find_if(r.bodies.begin(), r.bodies.end(),
+                                   [&](const auto& b) { return b.first == id; });
+    if (body == r.bodies.end()) throw std::runtime_error("no body " + id);
+    return body->second.position;
 }
 
 struct Tally {
@@ -163,22 +172,32 @@ int main(int argc, char** argv) {
     for (const std::string& a : adapted) md << "- " << a << '\n';
     md << "\n### Squeeze\n\nsqueeze_penetration_mm (docs/metrics.md): lift_hold with the four "
           "fingers' final curl raised from 0.3 to 1.0, max_penetration_mm (in brackets "
-          "max_shown_depth_mm, how deep the hand as shown went), and whether the cube stayed "
-          "held.\n\n| final curl |";
+          "max_shown_depth_mm, how deep the hand as shown went), whether the cube stayed held "
+          "and, if it did, squeeze_push_mm: how far from the unsqueezed cube it ends.\n\n"
+          "| final curl |";
     for (const std::string& c : columns) md << ' ' << c << " |";
     md << "\n|---|";
     for (std::size_t i = 0; i < columns.size(); ++i) md << "---|";
     md << '\n';
     if (bench::selected(options->only_scenes, std::string("lift_hold"))) {
         const Scene lift = load_scene(options->scenes_dir / "lift_hold.json");
+        std::vector<Vec3> unsqueezed;
+        for (const std::string& c : columns)
+            unsqueezed.push_back(final_position(run_scene(lift, run_of(c)), "cube"));
         for (double curl = 0.3; curl < 1.05; curl += 0.1) {
             md << "| " << std::to_string(curl).substr(0, 3) << " |";
-            for (const std::string& c : columns) {
-                const RunResult r = run_scene(squeezed(lift, curl), run_of(c));
-                char cell[64];
-                std::snprintf(cell, sizeof cell, " %.2f mm (shown %.2f mm), %s |",
-                              r.metrics.max_penetration_mm, r.metrics.max_shown_depth_mm,
-                              r.success ? "held" : "**dropped**");
+            for (std::size_t i = 0; i < columns.size(); ++i) {
+                const RunResult r = run_scene(squeezed(lift, curl), run_of(columns[i]));
+                char cell[96];
+                if (r.success) {
+                    std::snprintf(cell, sizeof cell,
+                                  " %.2f mm (shown %.2f mm), held, pushed %.0f mm |",
+                                  r.metrics.max_penetration_mm, r.metrics.max_shown_depth_mm,
+                                  1e3 * (final_position(r, "cube") - unsqueezed[i]).norm());
+                } else {
+                    std::snprintf(cell, sizeof cell, " %.2f mm (shown %.2f mm), **dropped** |",
+                                  r.metrics.max_penetration_mm, r.metrics.max_shown_depth_mm);
+                }
                 md << cell;
             }
             md << '\n';

@@ -43,14 +43,19 @@ TEST(Simulation, PaperDriveFollowsAlgorithmOneThroughBullet) {
     EXPECT_GT(x.norm(), 1e-4);
 }
 
+// The jointed drive, simulated with nothing near it.
+SimulationSettings awake_jointed_hand() {
+    SimulationSettings settings;
+    settings.drive = *find_drive("jointed");
+    settings.gating = false;
+    return settings;
+}
+
 // A jointed hand built from a first sample that tracking distorted (the index finger's middle
 // joint 3 cm off its bone) places that joint where no later ghost has it: its joints move to
 // the ghost's, and within a second every joint is back within 5 mm of its ghost.
 TEST(Simulation, AJointedHandBuiltFromADistortedSampleComesBackToItsGhost) {
-    SimulationSettings settings;
-    settings.drive = *find_drive("jointed");
-    settings.gating = false;
-    Simulation sim(settings, Vec3::Zero());
+    Simulation sim(awake_jointed_hand(), Vec3::Zero());
     const HandPose clean = right_hand(Vec3(0, 1, 0), 0.2);
     HandPose distorted = clean;
     distorted[Joint::IndexIntermediate].position += Vec3(0.03, 0.0, 0.0);
@@ -66,6 +71,29 @@ TEST(Simulation, AJointedHandBuiltFromADistortedSampleComesBackToItsGhost) {
         }
     }
     EXPECT_LT(worst, 0.005);
+}
+
+// A jointed hand built from a first sample whose index finger tracking stretched by 1 cm:
+// once the ghost's bones are clean again, the capsule takes the clean bone's length and every
+// bone meets its neighbour. Never rebuilt, the capsule stayed 1 cm long and its far end 1 cm
+// off the joint it was joined at.
+TEST(Simulation, AJointedBoneBuiltFromAStretchedSampleTakesItsGhostsLength) {
+    Simulation sim(awake_jointed_hand(), Vec3::Zero());
+    const HandPose clean = right_hand(Vec3(0, 1, 0), 0.2);
+    HandPose stretched = clean;
+    const Vec3 bone =
+        clean[Joint::IndexIntermediate].position - clean[Joint::IndexProximal].position;
+    for (Joint j : {Joint::IndexIntermediate, Joint::IndexDistal, Joint::IndexTip})
+        stretched[j].position += 0.01 * bone.normalized();
+    sim.step_to(1 / 90.0, {HandPose{}, stretched});
+    const auto index_proximal_length = [&] {
+        const HandSolids solids = sim.hand_solids(HandSide::Right);
+        return 2.0 * solids.parts[4].size.z();  // the palm and three thumb bones come first
+    };
+    EXPECT_NEAR(index_proximal_length(), bone.norm() + 0.01, 1e-4);
+    for (int f = 2; f <= 90; ++f) sim.step_to(f / 90.0, {HandPose{}, clean});
+    EXPECT_NEAR(index_proximal_length(), bone.norm(), 0.001);
+    EXPECT_LT(sim.hand(HandSide::Right).max_joint_gap, 0.001);
 }
 
 TEST(Simulation, AStaticBoxBlocksTheHandWhileTheGhostSinksIn) {
