@@ -48,14 +48,18 @@ Joint next_joint(Joint j) {
     return static_cast<Joint>(index_of(j) + 1);
 }
 
-// A bone capsule's frame in its anchor joint's frame (centred between the anchor and the
-// next joint, its axis along the bone) and its length, as `source` places the two joints.
+// The bone from joint `anchor` to the next, in the anchor's frame, as `source` places them.
+Vec3 bone_in_anchor(const HandPose& source, Joint anchor) {
+    return source[anchor].inverse() * source[next_joint(anchor)].position;
+}
+
+// A bone capsule's frame in its anchor joint's frame (centred on the bone `local`, its axis
+// along it) and its length.
 struct BoneSpan {
     Pose offset;
     double length;
 };
-BoneSpan bone_span(const HandPose& source, Joint anchor) {
-    const Vec3 local = source[anchor].inverse() * source[next_joint(anchor)].position;
+BoneSpan bone_span(const Vec3& local) {
     const double length = std::max(local.norm(), 1e-3);
     return {Pose{local / 2, Quat::FromTwoVectors(Vec3(0, 0, -1), local / length)}, length};
 }
@@ -172,7 +176,7 @@ PhysicalHand::PhysicalHand(HandSide side, const DriveSettings& drive, const Hand
             for (int bone = 0; bone < 3; ++bone) {
                 const Joint a = static_cast<Joint>(index_of(first) + bone);
                 const Joint b = next_joint(a);
-                const BoneSpan span = bone_span(source, a);
+                const BoneSpan span = bone_span(bone_in_anchor(source, a));
                 const double radius = std::max(
                     std::min(source.radii[index_of(a)], source.radii[index_of(b)]), kMinRadius);
                 std::vector<Joint> carried = {a};
@@ -388,9 +392,10 @@ void PhysicalHand::fit_bones(const HandPose& target) {
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
         Body& b = *bodies_[i];
         if (b.shape->getShapeType() != CAPSULE_SHAPE_PROXYTYPE) continue;
-        const BoneSpan span = bone_span(target, b.anchor);
-        // The centre lies halfway to the far end.
-        if ((span.offset.position - b.offset.position).norm() * 2.0 <= kBoneFitGive) continue;
+        const Vec3 local = bone_in_anchor(target, b.anchor);
+        // The capsule's centre lies halfway to its far end.
+        if ((local - 2.0 * b.offset.position).norm() <= kBoneFitGive) continue;
+        const BoneSpan span = bone_span(local);
         // The bone keeps its start where it is; its far end moves to where the ghost has it.
         btRigidBody& r = *b.rigid;
         const Pose was = from_bt(r.getWorldTransform());
