@@ -217,7 +217,7 @@ PhysicalHand::PhysicalHand(HandSide side, const DriveSettings& drive, const Hand
         if (drive.body_model != BodyModel::BoneCapsules || !before) continue;
         const Body& parent = *bodies_[static_cast<std::size_t>(body_of_joint_[index_of(*before)])];
         if (&parent == &b) continue;
-        b.end_in_parent = target_of(parent, source).inverse() * source[b.anchor].position;
+        b.end_in_parent = joint_in(parent, b.anchor, source);
         // A capsule's centre lies halfway along its bone.
         const Vec3 start = b.offset.inverse().position;
         joints_.push_back({parent.rigid.get(), b.rigid.get(), *b.end_in_parent, start, -start,
@@ -246,6 +246,10 @@ void PhysicalHand::detach(World& world) {
 
 Pose PhysicalHand::target_of(const Body& body, const HandPose& target) const {
     return target[body.anchor] * body.offset;
+}
+
+Vec3 PhysicalHand::joint_in(const Body& body, Joint joint, const HandPose& pose) const {
+    return target_of(body, pose).inverse() * pose[joint].position;
 }
 
 void PhysicalHand::seat(const HandPose& target, const HandPose& previous_target, double frame_dt) {
@@ -379,7 +383,7 @@ void PhysicalHand::refit_joints(const HandPose& goal, double h) {
     for (std::size_t i = 0; i < joints_.size(); ++i) {
         const Body& parent = *bodies_[joint_bodies_[i].first];
         const Body& child = *bodies_[joint_bodies_[i].second];
-        const Vec3 wanted = target_of(parent, goal).inverse() * goal[child.anchor].position;
+        const Vec3 wanted = joint_in(parent, child.anchor, goal);
         Vec3 step = wanted - joints_[i].end_in_parent;
         const double most = kJointRefitSpeed * h;
         if (step.norm() > most) step *= most / step.norm();
@@ -425,7 +429,7 @@ void PhysicalHand::fit_bones(const HandPose& target) {
     }
     for (const auto& [parent, child] : joint_bodies_) {
         Body& c = *bodies_[child];
-        c.end_in_parent = target_of(*bodies_[parent], target).inverse() * target[c.anchor].position;
+        c.end_in_parent = joint_in(*bodies_[parent], c.anchor, target);
     }
 }
 

@@ -97,6 +97,8 @@ class PhysicalHand {
   private:
     struct Body;
     Pose target_of(const Body& body, const HandPose& target) const;
+    // Where `pose` has `joint`, in the frame `pose` gives `body`.
+    Vec3 joint_in(const Body& body, Joint joint, const HandPose& pose) const;
     // Moves each joint of joined bones toward where `goal` has it on the body before it,
     // at most kJointRefitSpeed.
     void refit_joints(const HandPose& goal, double h);
