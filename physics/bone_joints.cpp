@@ -3,6 +3,7 @@
 #include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "bullet_convert.h"
@@ -54,16 +55,47 @@ void move_point(btRigidBody& body, const std::optional<Vec3>& pivot, const Vec3&
     body.setWorldTransform(to_bt(pose));
 }
 
+// Turns `body` rigidly by `turn` about `pivot`.
+void turn_about(btRigidBody& body, const Vec3& pivot, const Quat& turn) {
+    Pose pose = from_bt(body.getWorldTransform());
+    pose.position = pivot + turn * (pose.position - pivot);
+    pose.orientation = (turn * pose.orientation).normalized();
+    body.setWorldTransform(to_bt(pose));
+}
+
+// How far past its range a joint turns before it is turned back (radians).
+constexpr double kRangeGive = 1e-3;
+
 }  // namespace
+
+std::optional<Quat> turn_within(const JointRange& range, const Quat& turn) {
+    const Quat q = turn.w() < 0.0 ? Quat(-turn.coeffs()) : turn;
+    const Vec3 tip = q * Vec3(0, 0, -1);
+    const double flexion = std::atan2(-tip.y(), -tip.z());
+    const double abduction = std::asin(std::clamp(tip.x(), -1.0, 1.0));
+    // Swing and twist: the twist about the bone's own z is q's part along z.
+    const double twist = 2.0 * std::atan2(q.z(), q.w());
+    const double f = std::clamp(flexion, range.least_flexion, range.most_flexion);
+    const double a = std::clamp(abduction, -range.abduction, range.abduction);
+    const double t = std::clamp(twist, -range.twist, range.twist);
+    if (std::abs(f - flexion) + std::abs(a - abduction) + std::abs(t - twist) < kRangeGive)
+        return std::nullopt;
+    const Vec3 allowed(std::sin(a), -std::sin(f) * std::cos(a), -std::cos(f) * std::cos(a));
+    return Quat::FromTwoVectors(Vec3(0, 0, -1), allowed) *
+           Quat(Eigen::AngleAxisd(t, Vec3::UnitZ()));
+}
 
 void close_joint_gaps(const std::vector<BoneJoint>& joints, double h) {
     // Each moved body, as it was before its first move.
     std::vector<std::pair<btRigidBody*, Pose>> moved;
-    const auto move = [&](btRigidBody& body, const std::optional<Vec3>& pivot, const Vec3& point,
-                          const Vec3& to) {
+    const auto note = [&](btRigidBody& body) {
         if (std::none_of(moved.begin(), moved.end(),
                          [&](const auto& m) { return m.first == &body; }))
             moved.emplace_back(&body, from_bt(body.getWorldTransform()));
+    };
+    const auto move = [&](btRigidBody& body, const std::optional<Vec3>& pivot, const Vec3& point,
+                          const Vec3& to) {
+        note(body);
         move_point(body, pivot, point, to);
     };
     for (int sweep = 0; sweep < kSweeps; ++sweep) {
@@ -75,14 +107,27 @@ void close_joint_gaps(const std::vector<BoneJoint>& joints, double h) {
             const Vec3 start = child * j.start_in_child;
             const Vec3 apart = end - start;
             const double distance = apart.norm();
-            if (distance < kGive + kClosed) continue;
-            const Vec3 gap = apart * ((distance - kGive) / distance);
-            const double child_share =
-                j.child->getInvMass() / (j.child->getInvMass() + j.parent->getInvMass());
-            move(*j.child, child * j.far_in_child, start, start + child_share * gap);
-            const std::optional<Vec3> parent_pivot =
-                j.parent_start ? std::optional<Vec3>(parent * *j.parent_start) : std::nullopt;
-            move(*j.parent, parent_pivot, end, end - (1.0 - child_share) * gap);
+            if (distance >= kGive + kClosed) {
+                const double child_share =
+                    j.child->getInvMass() / (j.child->getInvMass() + j.parent->getInvMass());
+                const Vec3 gap = apart * ((distance - kGive) / distance);
+                move(*j.child, child * j.far_in_child, start, start + child_share * gap);
+                const std::optional<Vec3> parent_pivot =
+                    j.parent_start ? std::optional<Vec3>(parent * *j.parent_start) : std::nullopt;
+                move(*j.parent, parent_pivot, end, end - (1.0 - child_share) * gap);
+                closed = true;
+            }
+            if (!j.range) continue;
+            const Quat parent_frame =
+                from_bt(j.parent->getWorldTransform()).orientation * j.parent_frame;
+            const Quat child_frame =
+                from_bt(j.child->getWorldTransform()).orientation * j.child_frame;
+            const std::optional<Quat> allowed =
+                turn_within(*j.range, parent_frame.inverse() * child_frame);
+            if (!allowed) continue;
+            note(*j.child);
+            turn_about(*j.child, from_bt(j.parent->getWorldTransform()) * j.end_in_parent,
+                       parent_frame * *allowed * child_frame.inverse());
             closed = true;
         }
         // A sweep that closed nothing leaves the next one nothing to close either: a hand

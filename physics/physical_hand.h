@@ -2,6 +2,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "bone_joints.h"
@@ -16,6 +17,14 @@ class btRigidBody;
 namespace physhand {
 
 class World;
+
+// The range a human hand's joint bends in, between the bone anchored at `anchor` and the body
+// before it (the palm for a finger's first bone), wider than a tracked hand bends it, so that
+// only what the hand touches bends a bone that far: a finger's knuckle, middle and end joints
+// and the thumb's knuckle and end joint. The thumb's base turns freely (none). The knuckles'
+// abduction spans a spread finger's splay against the palm's frame, which is the middle
+// finger's. Unjoined, the displacement task's wall folded a fingertip fully back.
+std::optional<JointRange> joint_range(Joint anchor);
 
 // The simulated hand: rigid bodies laid out by the drive's body model, each following a
 // target frame derived from one ghost joint (its anchor). Joints the body carries move

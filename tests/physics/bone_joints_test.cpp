@@ -3,7 +3,10 @@
 #include <btBulletDynamicsCommon.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
+#include <numbers>
+#include <optional>
 
 #include "bullet_convert.h"
 
@@ -22,8 +25,21 @@ class BoneJoints : public ::testing::Test {
         first_ = make(0.1, Vec3(0, 0, -0.05 - kBoneLength / 2));
         second_ = make(0.1, Vec3(0, 0, -0.05 - 1.5 * kBoneLength));
         const Vec3 start(0, 0, kBoneLength / 2);
-        joints_.push_back({palm_.get(), first_.get(), Vec3(0, 0, -0.05), start, -start, {}});
-        joints_.push_back({first_.get(), second_.get(), -start, start, -start, start});
+        joints_.push_back(joint(*palm_, *first_, Vec3(0, 0, -0.05), std::nullopt));
+        joints_.push_back(joint(*first_, *second_, -start, start));
+    }
+
+    // A bone joined at its start, turning about its far end.
+    static BoneJoint joint(btRigidBody& parent, btRigidBody& child, const Vec3& end_in_parent,
+                           const std::optional<Vec3>& parent_start) {
+        BoneJoint j;
+        j.parent = &parent;
+        j.child = &child;
+        j.end_in_parent = end_in_parent;
+        j.start_in_child = Vec3(0, 0, kBoneLength / 2);
+        j.far_in_child = -j.start_in_child;
+        j.parent_start = parent_start;
+        return j;
     }
 
     std::unique_ptr<btRigidBody> make(double mass, const Vec3& at) {
@@ -78,6 +94,64 @@ TEST_F(BoneJoints, AGapClosesWithEachSideMovingByItsShare) {
     EXPECT_LT(position(*palm_).norm(), 0.1 * first_moved);
     EXPECT_LT((from_bt(palm_->getLinearVelocity()) - position(*palm_) / kH).norm(), 1e-5);
     EXPECT_GT(from_bt(first_->getAngularVelocity()).norm(), 0.1);
+}
+
+// Flexion, abduction and twist (radians) of a turn, as JointRange measures them.
+Vec3 bend_of(const Quat& turn) {
+    const Vec3 tip = turn * Vec3(0, 0, -1);
+    return Vec3(std::atan2(-tip.y(), -tip.z()), std::asin(tip.x()),
+                2.0 * std::atan2(turn.z(), turn.w()));
+}
+
+Quat flexed(double flexion) {
+    return Quat(Eigen::AngleAxisd(-flexion, Vec3::UnitX()));
+}
+
+constexpr JointRange kRange{
+    .least_flexion = -0.2, .most_flexion = 1.5, .abduction = 0.3, .twist = 0.25};
+
+TEST(JointRanges, ATurnWithinItsRangeIsLeftAsItIs) {
+    EXPECT_FALSE(turn_within(kRange, flexed(1.2)));
+    EXPECT_FALSE(turn_within(kRange, Quat(Eigen::AngleAxisd(0.25, Vec3::UnitY())) * flexed(0.5) *
+                                         Quat(Eigen::AngleAxisd(-0.2, Vec3::UnitZ()))));
+}
+
+TEST(JointRanges, ATurnPastItsRangeIsBroughtToItsEdge) {
+    const std::optional<Quat> back = turn_within(kRange, flexed(-0.9));
+    ASSERT_TRUE(back);
+    EXPECT_NEAR(bend_of(*back).x(), -0.2, 1e-6);
+    EXPECT_NEAR(bend_of(*back).y(), 0.0, 1e-6);
+
+    // Bent past every limit at once: each of the three is brought to its edge.
+    const Vec3 tip(std::sin(-0.5), -std::sin(1.7) * std::cos(0.5), -std::cos(1.7) * std::cos(0.5));
+    const Quat bent =
+        Quat::FromTwoVectors(Vec3(0, 0, -1), tip) * Quat(Eigen::AngleAxisd(0.4, Vec3::UnitZ()));
+    const Vec3 was = bend_of(bent);
+    ASSERT_GT(was.x(), kRange.most_flexion);
+    ASSERT_GT(std::abs(was.y()), kRange.abduction);
+    ASSERT_GT(std::abs(was.z()), kRange.twist);
+    const std::optional<Quat> within = turn_within(kRange, bent);
+    ASSERT_TRUE(within);
+    const Vec3 now = bend_of(*within);
+    EXPECT_NEAR(now.x(), kRange.most_flexion, 1e-6);
+    EXPECT_NEAR(now.y(), std::copysign(kRange.abduction, was.y()), 1e-6);
+    EXPECT_NEAR(now.z(), std::copysign(kRange.twist, was.z()), 1e-6);
+}
+
+// The tip bone bent 60 degrees back (pressed on what it touches): it turns back to the edge of
+// its range about the joint, which stays closed, and takes up the turn as velocity.
+TEST_F(BoneJoints, ABoneBentPastItsRangeTurnsBackAboutItsJoint) {
+    joints_[1].range = kRange;
+    const Vec3 joint(0, 0, -0.05 - kBoneLength);
+    const Quat back = flexed(-60.0 * std::numbers::pi / 180.0);
+    second_->setWorldTransform(to_bt(Pose{joint + back * Vec3(0, 0, -kBoneLength / 2), back}));
+    close_joint_gaps(joints_, kH);
+    const Quat first = from_bt(first_->getWorldTransform()).orientation;
+    const Quat second = from_bt(second_->getWorldTransform()).orientation;
+    EXPECT_NEAR(bend_of(first.inverse() * second).x(), kRange.least_flexion, 2e-3);
+    EXPECT_LT(largest_gap(), 0.0003 + 1e-6);
+    EXPECT_LT(from_bt(second_->getAngularVelocity()).x(), -1.0);  // turning toward the palm
+    EXPECT_LT(from_bt(first_->getAngularVelocity()).norm(), 1e-9);
 }
 
 }  // namespace
