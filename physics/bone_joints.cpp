@@ -68,16 +68,35 @@ constexpr double kRangeGive = 1e-3;
 
 }  // namespace
 
-std::optional<Quat> turn_within(const JointRange& range, const Quat& turn) {
+JointRange::JointRange(double least_flexion, double most_flexion, double abduction, double twist)
+    : least_flexion_(least_flexion),
+      most_flexion_(most_flexion),
+      abduction_(abduction),
+      twist_(twist),
+      least_cos_(std::cos(least_flexion)),
+      least_sin_(std::sin(least_flexion)),
+      most_cos_(std::cos(most_flexion)),
+      most_sin_(std::sin(most_flexion)),
+      abduction_sin_(std::sin(abduction)),
+      half_twist_tan_(std::tan(twist / 2.0)) {}
+
+std::optional<Quat> JointRange::bring_within(const Quat& turn) const {
     const Quat q = turn.w() < 0.0 ? Quat(-turn.coeffs()) : turn;
     const Vec3 tip = q * Vec3(0, 0, -1);
-    const double flexion = std::atan2(-tip.y(), -tip.z());
+    // The tip's direction in the plane it flexes in, (-z, -y), lies between the least and the
+    // most flexion's; its x is the sine of its abduction; q's part along z (q.w >= 0) is its
+    // twist's half-angle tangent times q.w.
+    const double u = -tip.z();
+    const double v = -tip.y();
+    if (least_cos_ * v - least_sin_ * u >= 0.0 && u * most_sin_ - v * most_cos_ >= 0.0 &&
+        std::abs(tip.x()) <= abduction_sin_ && std::abs(q.z()) <= half_twist_tan_ * q.w())
+        return std::nullopt;
+    const double flexion = std::atan2(v, u);
     const double abduction = std::asin(std::clamp(tip.x(), -1.0, 1.0));
-    // Swing and twist: the twist about the bone's own z is q's part along z.
     const double twist = 2.0 * std::atan2(q.z(), q.w());
-    const double f = std::clamp(flexion, range.least_flexion, range.most_flexion);
-    const double a = std::clamp(abduction, -range.abduction, range.abduction);
-    const double t = std::clamp(twist, -range.twist, range.twist);
+    const double f = std::clamp(flexion, least_flexion_, most_flexion_);
+    const double a = std::clamp(abduction, -abduction_, abduction_);
+    const double t = std::clamp(twist, -twist_, twist_);
     if (std::abs(f - flexion) + std::abs(a - abduction) + std::abs(t - twist) < kRangeGive)
         return std::nullopt;
     const Vec3 allowed(std::sin(a), -std::sin(f) * std::cos(a), -std::cos(f) * std::cos(a));
@@ -101,8 +120,8 @@ void close_joint_gaps(const std::vector<BoneJoint>& joints, double h) {
     for (int sweep = 0; sweep < kSweeps; ++sweep) {
         bool closed = false;
         for (const BoneJoint& j : joints) {
-            const Pose parent = from_bt(j.parent->getWorldTransform());
-            const Pose child = from_bt(j.child->getWorldTransform());
+            Pose parent = from_bt(j.parent->getWorldTransform());
+            Pose child = from_bt(j.child->getWorldTransform());
             const Vec3 end = parent * j.end_in_parent;
             const Vec3 start = child * j.start_in_child;
             const Vec3 apart = end - start;
@@ -116,17 +135,17 @@ void close_joint_gaps(const std::vector<BoneJoint>& joints, double h) {
                     j.parent_start ? std::optional<Vec3>(parent * *j.parent_start) : std::nullopt;
                 move(*j.parent, parent_pivot, end, end - (1.0 - child_share) * gap);
                 closed = true;
+                parent = from_bt(j.parent->getWorldTransform());
+                child = from_bt(j.child->getWorldTransform());
             }
             if (!j.range) continue;
-            const Quat parent_frame =
-                from_bt(j.parent->getWorldTransform()).orientation * j.parent_frame;
-            const Quat child_frame =
-                from_bt(j.child->getWorldTransform()).orientation * j.child_frame;
+            const Quat parent_frame = parent.orientation * j.parent_frame;
+            const Quat child_frame = child.orientation * j.child_frame;
             const std::optional<Quat> allowed =
-                turn_within(*j.range, parent_frame.inverse() * child_frame);
+                j.range->bring_within(parent_frame.inverse() * child_frame);
             if (!allowed) continue;
             note(*j.child);
-            turn_about(*j.child, from_bt(j.parent->getWorldTransform()) * j.end_in_parent,
+            turn_about(*j.child, parent * j.end_in_parent,
                        parent_frame * *allowed * child_frame.inverse());
             closed = true;
         }

@@ -12,12 +12,24 @@ namespace physhand {
 // How far a joint bends, in radians, between the joint frames of the two bones it joins (as
 // OpenXR's: -Z along the bone toward the tip, +Y on the back of the hand). Flexion turns the
 // child's -Z toward -Y, the palm (negative: hyperextension); abduction turns it toward +X or
-// -X; twist turns it about its own length.
-struct JointRange {
-    double least_flexion = 0.0;
-    double most_flexion = 0.0;
-    double abduction = 0.0;  // either way
-    double twist = 0.0;      // either way
+// -X; twist turns it about its own length. Flexion spans under half a turn, abduction and
+// twist under a quarter either way.
+class JointRange {
+  public:
+    JointRange(double least_flexion, double most_flexion, double abduction, double twist);
+    double least_flexion() const { return least_flexion_; }
+    double most_flexion() const { return most_flexion_; }
+    double abduction() const { return abduction_; }
+    double twist() const { return twist_; }
+    // `turn` (the child's joint frame in its parent's) brought within the range; none if it
+    // lies within it already.
+    std::optional<Quat> bring_within(const Quat& turn) const;
+
+  private:
+    double least_flexion_, most_flexion_, abduction_, twist_;
+    // The limits as directions and ratios, which tell a turn within the range (nearly every
+    // turn, every substep) without trigonometry.
+    double least_cos_, least_sin_, most_cos_, most_sin_, abduction_sin_, half_twist_tan_;
 };
 
 // Where a bone meets the body before it (the palm, or the bone before it in its finger).
@@ -35,10 +47,6 @@ struct BoneJoint {
     Quat parent_frame = Quat::Identity();
     Quat child_frame = Quat::Identity();
 };
-
-// `turn` (the child's joint frame in its parent's) brought within `range`; none if it lies
-// within it already.
-std::optional<Quat> turn_within(const JointRange& range, const Quat& turn);
 
 // Puts each child's start back within 0.3 mm (the joint's give) of its parent's end, after
 // a substep of length h: each of the two moves its share of the gap in inverse proportion

@@ -123,7 +123,7 @@ struct PhysicalHand::Body {
 std::optional<JointRange> joint_range(Joint anchor) {
     const auto degrees = [](double least, double most, double abduction, double twist) {
         constexpr double kDegree = std::numbers::pi / 180.0;
-        return JointRange{least * kDegree, most * kDegree, abduction * kDegree, twist * kDegree};
+        return JointRange(least * kDegree, most * kDegree, abduction * kDegree, twist * kDegree);
     };
     if (anchor == Joint::ThumbMetacarpal) return std::nullopt;
     if (anchor == Joint::ThumbProximal) return degrees(-20, 70, 20, 20);

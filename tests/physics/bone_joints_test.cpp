@@ -107,17 +107,40 @@ Quat flexed(double flexion) {
     return Quat(Eigen::AngleAxisd(-flexion, Vec3::UnitX()));
 }
 
-constexpr JointRange kRange{
-    .least_flexion = -0.2, .most_flexion = 1.5, .abduction = 0.3, .twist = 0.25};
+const JointRange kRange(-0.2, 1.5, 0.3, 0.25);
 
 TEST(JointRanges, ATurnWithinItsRangeIsLeftAsItIs) {
-    EXPECT_FALSE(turn_within(kRange, flexed(1.2)));
-    EXPECT_FALSE(turn_within(kRange, Quat(Eigen::AngleAxisd(0.25, Vec3::UnitY())) * flexed(0.5) *
-                                         Quat(Eigen::AngleAxisd(-0.2, Vec3::UnitZ()))));
+    EXPECT_FALSE(kRange.bring_within(flexed(1.2)));
+    EXPECT_FALSE(kRange.bring_within(Quat(Eigen::AngleAxisd(0.25, Vec3::UnitY())) * flexed(0.5) *
+                                     Quat(Eigen::AngleAxisd(-0.2, Vec3::UnitZ()))));
+}
+
+// A turn of given flexion, abduction and twist, as JointRange measures them.
+Quat bent_by(double flexion, double abduction, double twist) {
+    const Vec3 tip(std::sin(abduction), -std::sin(flexion) * std::cos(abduction),
+                   -std::cos(flexion) * std::cos(abduction));
+    return Quat::FromTwoVectors(Vec3(0, 0, -1), tip) *
+           Quat(Eigen::AngleAxisd(twist, Vec3::UnitZ()));
+}
+
+// Whether a turn lies within is told without trigonometry: on either side of every limit
+// (0.01 rad away), the quick test agrees with the measures.
+TEST(JointRanges, EveryTurnIsToldWithinOrPastItsRange) {
+    const double off = 0.01;
+    for (double f : {-0.2 - off, -0.2 + off, 0.7, 1.5 - off, 1.5 + off, -2.5, 3.0}) {
+        for (double a : {-0.3 - off, -0.3 + off, 0.0, 0.3 - off, 0.3 + off}) {
+            for (double t : {-0.25 - off, -0.25 + off, 0.0, 0.25 - off, 0.25 + off}) {
+                const bool within =
+                    f >= -0.2 && f <= 1.5 && std::abs(a) <= 0.3 && std::abs(t) <= 0.25;
+                EXPECT_EQ(!kRange.bring_within(bent_by(f, a, t)), within)
+                    << f << " " << a << " " << t;
+            }
+        }
+    }
 }
 
 TEST(JointRanges, ATurnPastItsRangeIsBroughtToItsEdge) {
-    const std::optional<Quat> back = turn_within(kRange, flexed(-0.9));
+    const std::optional<Quat> back = kRange.bring_within(flexed(-0.9));
     ASSERT_TRUE(back);
     EXPECT_NEAR(bend_of(*back).x(), -0.2, 1e-6);
     EXPECT_NEAR(bend_of(*back).y(), 0.0, 1e-6);
@@ -127,15 +150,15 @@ TEST(JointRanges, ATurnPastItsRangeIsBroughtToItsEdge) {
     const Quat bent =
         Quat::FromTwoVectors(Vec3(0, 0, -1), tip) * Quat(Eigen::AngleAxisd(0.4, Vec3::UnitZ()));
     const Vec3 was = bend_of(bent);
-    ASSERT_GT(was.x(), kRange.most_flexion);
-    ASSERT_GT(std::abs(was.y()), kRange.abduction);
-    ASSERT_GT(std::abs(was.z()), kRange.twist);
-    const std::optional<Quat> within = turn_within(kRange, bent);
+    ASSERT_GT(was.x(), kRange.most_flexion());
+    ASSERT_GT(std::abs(was.y()), kRange.abduction());
+    ASSERT_GT(std::abs(was.z()), kRange.twist());
+    const std::optional<Quat> within = kRange.bring_within(bent);
     ASSERT_TRUE(within);
     const Vec3 now = bend_of(*within);
-    EXPECT_NEAR(now.x(), kRange.most_flexion, 1e-6);
-    EXPECT_NEAR(now.y(), std::copysign(kRange.abduction, was.y()), 1e-6);
-    EXPECT_NEAR(now.z(), std::copysign(kRange.twist, was.z()), 1e-6);
+    EXPECT_NEAR(now.x(), kRange.most_flexion(), 1e-6);
+    EXPECT_NEAR(now.y(), std::copysign(kRange.abduction(), was.y()), 1e-6);
+    EXPECT_NEAR(now.z(), std::copysign(kRange.twist(), was.z()), 1e-6);
 }
 
 // The tip bone bent 60 degrees back (pressed on what it touches): it turns back to the edge of
@@ -148,7 +171,7 @@ TEST_F(BoneJoints, ABoneBentPastItsRangeTurnsBackAboutItsJoint) {
     close_joint_gaps(joints_, kH);
     const Quat first = from_bt(first_->getWorldTransform()).orientation;
     const Quat second = from_bt(second_->getWorldTransform()).orientation;
-    EXPECT_NEAR(bend_of(first.inverse() * second).x(), kRange.least_flexion, 2e-3);
+    EXPECT_NEAR(bend_of(first.inverse() * second).x(), kRange.least_flexion(), 2e-3);
     EXPECT_LT(largest_gap(), 0.0003 + 1e-6);
     EXPECT_LT(from_bt(second_->getAngularVelocity()).x(), -1.0);  // turning toward the palm
     EXPECT_LT(from_bt(first_->getAngularVelocity()).norm(), 1e-9);

@@ -121,7 +121,7 @@ TEST(SampleScenes, AJointedHandBendsAsAHandDoes) {
                 const Joint before =
                     bone == 0 ? Joint::Palm : static_cast<Joint>(index_of(anchor) - 1);
                 const Quat turn = hand[before].orientation.inverse() * hand[anchor].orientation;
-                if (const std::optional<Quat> within = turn_within(*range, turn))
+                if (const std::optional<Quat> within = range->bring_within(turn))
                     furthest = std::max(furthest, within->angularDistance(turn));
             }
         }
