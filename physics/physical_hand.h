@@ -23,7 +23,7 @@ class World;
 // only what the hand touches bends a bone that far: a finger's knuckle, middle and end joints
 // and the thumb's knuckle and end joint. The thumb's base turns freely (none). The knuckles'
 // abduction spans a spread finger's splay against the palm's frame, which is the middle
-// finger's. Unjoined, the displacement task's wall folded a fingertip fully back.
+// finger's. Without ranges, the displacement task's wall folded a fingertip fully back.
 std::optional<JointRange> joint_range(Joint anchor);
 
 // The simulated hand: rigid bodies laid out by the drive's body model, each following a
