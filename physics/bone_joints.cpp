@@ -35,6 +35,12 @@ Vec3 capped(const Vec3& v, double most) {
     return n > most ? Vec3(v * (most / n)) : v;
 }
 
+// Turns `pose` rigidly by `turn` about `pivot`.
+void turn_about(Pose& pose, const Vec3& pivot, const Quat& turn) {
+    pose.position = pivot + turn * (pose.position - pivot);
+    pose.orientation = (turn * pose.orientation).normalized();
+}
+
 // Moves `pose` rigidly so that its `point` lands on `to`: turned about `pivot` toward it
 // first, where there is one, then slid the rest of the way.
 void move_point(Pose& pose, const std::optional<Vec3>& pivot, const Vec3& point, const Vec3& to) {
@@ -44,18 +50,11 @@ void move_point(Pose& pose, const std::optional<Vec3>& pivot, const Vec3& point,
         const Vec3 toward = to - *pivot;
         if (from.norm() > kClosed && toward.norm() > kClosed) {
             const Quat turn = Quat::FromTwoVectors(from, toward);
-            pose.position = *pivot + turn * (pose.position - *pivot);
-            pose.orientation = (turn * pose.orientation).normalized();
+            turn_about(pose, *pivot, turn);
             moved = *pivot + turn * from;
         }
     }
     pose.position += to - moved;
-}
-
-// Turns `pose` rigidly by `turn` about `pivot`.
-void turn_about(Pose& pose, const Vec3& pivot, const Quat& turn) {
-    pose.position = pivot + turn * (pose.position - pivot);
-    pose.orientation = (turn * pose.orientation).normalized();
 }
 
 // The poses of the bodies a closing reads and moves, read from Bullet once and written back
