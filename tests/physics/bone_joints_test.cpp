@@ -146,9 +146,7 @@ TEST(JointRanges, ATurnPastItsRangeIsBroughtToItsEdge) {
     EXPECT_NEAR(bend_of(*back).y(), 0.0, 1e-6);
 
     // Bent past every limit at once: each of the three is brought to its edge.
-    const Vec3 tip(std::sin(-0.5), -std::sin(1.7) * std::cos(0.5), -std::cos(1.7) * std::cos(0.5));
-    const Quat bent =
-        Quat::FromTwoVectors(Vec3(0, 0, -1), tip) * Quat(Eigen::AngleAxisd(0.4, Vec3::UnitZ()));
+    const Quat bent = bent_by(1.7, -0.5, 0.4);
     const Vec3 was = bend_of(bent);
     ASSERT_GT(was.x(), kRange.most_flexion());
     ASSERT_GT(std::abs(was.y()), kRange.abduction());
