@@ -622,7 +622,7 @@ void Simulation::collect_contacts(ContactIndex& contact_index, ColliderIndex& co
         if (c.distance < 0) penetrating[static_cast<std::size_t>(side)] = true;
         if (!slot.body->contact_response()) return;
         if (c.distance > kTouchDistance && c.impulse <= 0.0) {
-            if (c.collider_motion != Motion::Static && c.distance < kLonePressGive) {
+            if (c.distance < kLonePressGive) {
                 touches_.push_back({slot.body.get(), body, c.collider_motion, c.normal, c.collider,
                                     c.distance, 0.0, c.collider_velocity});
             }

@@ -223,8 +223,8 @@ class Simulation {
         Motion motion;
         Vec3 normal;  // from the collider toward the body
         ColliderHandle collider;
-        double gap;      // 0: touching; else only near a movable collider (within kLonePressGive)
-        double impulse;  // normal, N·s, in the last substep (0 when only near)
+        double gap;              // 0: touching; else only near (within kLonePressGive)
+        double impulse;          // normal, N·s, in the last substep (0 when only near)
         Vec3 collider_velocity;  // at the contact point
     };
     std::vector<HandTouch> touches_;

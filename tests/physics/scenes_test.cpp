@@ -177,14 +177,19 @@ Scene pitched_press_table() {
 }
 
 // A still ghost pressed into a table: the returned joints stay still (rest_jitter_mm), with the
-// palm flat on it and with the hand pitched so the fingers press first.
+// palm flat on it and with the hand pitched so the fingers press first, joined or not (joined
+// bones held a hair above the table by their joints shook 0.15-0.18 mm while they counted as
+// resting only when touching it).
 TEST(SampleScenes, AHandRestingOnATableIsQuiet) {
     ASSERT_EQ(default_drive().substeps, 1);
-    EXPECT_LT(run_scene(testing::sample_scene("press_table"), RunOptions{}).metrics.rest_jitter_mm,
-              0.1);
-    const RunResult pitched = run_scene(pitched_press_table(), RunOptions{});
-    EXPECT_LT(pitched.metrics.rest_jitter_mm, 0.1);
-    EXPECT_LT(pitched.metrics.max_penetration_mm, 0.1);
+    RunOptions jointed;
+    jointed.drive = "jointed";
+    for (const RunOptions& run : {RunOptions{}, jointed}) {
+        SCOPED_TRACE(run.drive.value_or("default"));
+        EXPECT_LT(run_scene(testing::sample_scene("press_table"), run).metrics.rest_jitter_mm, 0.1);
+        EXPECT_LT(run_scene(pitched_press_table(), run).metrics.rest_jitter_mm, 0.1);
+    }
+    EXPECT_LT(run_scene(pitched_press_table(), RunOptions{}).metrics.max_penetration_mm, 0.1);
 }
 
 // Pressed 5 cm into a table, every joint stays over its ghost: a thumb bone driven that deep
