@@ -401,8 +401,8 @@ void PhysicalHand::note_touch(int body, Motion motion, const Vec3& normal, doubl
     // substeps they touched it switched between pressing on and resting every substep
     // (jointed, press_table: joints 0.15 mm RMS frame to frame, pitched 0.18; 0.005 with this).
     // An unjoined one lands on it: resting near it too, bones/1 played as before within the
-    // benchmark's churn, but a fingertip beside the displacement task's wall pulled the placed
-    // cube out more often (3 mm noise seed 1: 8 of 16 shifts, 14 before).
+    // benchmark's churn, but the displacement task's cube, placed under 3 mm of noise (seed 1),
+    // ended in its hole at 8 of 16 shifts, against 14.
     if (gap > 0.0 && motion == Motion::Static) {
         if (!drive_.joined_bones) return;
         b.near_static = true;
