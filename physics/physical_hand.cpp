@@ -396,17 +396,12 @@ void PhysicalHand::clear_touches() {
 void PhysicalHand::note_touch(int body, Motion motion, const Vec3& normal, double gap, bool holds,
                               const Vec3& velocity) {
     Body& b = *bodies_[static_cast<std::size_t>(body)];
-    // A joined bone near a static collider rests on it as one touching it does (drive aim and
-    // turning gains): held a hair above a table by their joints, bones that rested only on the
-    // substeps they touched it switched between pressing on and resting every substep
-    // (jointed, press_table: joints 0.15 mm RMS frame to frame, pitched 0.18; 0.005 with this).
-    // An unjoined one lands on it: resting near it too, bones/1 played as before within the
-    // benchmark's churn, but the displacement task's cube, placed under 3 mm of noise (seed 1),
-    // ended in its hole at 8 of 16 shifts, against 14.
-    if (gap > 0.0 && motion == Motion::Static) {
-        if (!drive_.joined_bones) return;
-        b.near_static = true;
-    }
+    // Near a static collider (joined bones only, Simulation::collect_contacts), a body rests on
+    // it as one touching it does (drive aim and turning gains): held a hair above a table by
+    // their joints, bones that rested only on the substeps they touched it switched between
+    // pressing on and resting every substep (jointed, press_table: joints 0.15 mm RMS frame to
+    // frame, pitched 0.18; 0.005 with this).
+    if (gap > 0.0 && motion == Motion::Static) b.near_static = true;
     if (gap == 0.0) (motion == Motion::Dynamic ? b.touching_movable : b.touching_fixed) = true;
     (motion == Motion::Static ? b.static_normal : b.movable_normal) += normal;
     if (motion == Motion::Static) return;

@@ -49,13 +49,14 @@ class PhysicalHand {
     void drive(const HandPose& goal, const HandPose& previous_target, const HandPose& target,
                double frame_dt, double h);
     // What bodies touched in the last substep (`normal`: from the collider toward the body;
-    // `gap`: 0, or how far a collider lay from a body it did not touch, under kLonePressGive;
-    // `holds`: on a movable collider, another hand part touches it from the opposite side or it
-    // rests on this body): a body that rests on what it cannot move (a joined bone: or nears a
-    // static collider) turns more softly, one that rests on static colliders alone presses no
-    // deeper than kRestingPressDepth into them, and one that presses or nears movable colliders
-    // without holding them gives up kLonePressGive of its reach (near as well as touching, so
-    // that it does not press in again each time it comes clear).
+    // `gap`: 0, or how far a movable collider (or a static one, for joined bones) lay from a
+    // body it did not touch, under kLonePressGive; `holds`: on a movable collider, another hand
+    // part touches it from the opposite side or it rests on this body): a body that rests on
+    // what it cannot move (a joined bone: or nears a static collider) turns more softly, one
+    // that rests on static colliders alone presses no deeper than kRestingPressDepth into them,
+    // and one that presses or nears movable colliders without holding them gives up
+    // kLonePressGive of its reach (near as well as touching, so that it does not press in again
+    // each time it comes clear).
     void clear_touches();
     // How fast `body`'s target moves along `normal` relative to the hand's palm target, m/s, in
     // the frame last driven: over 0 along a contact normal (toward the body), that part of the
