@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
 
 #include "bullet_convert.h"
 
@@ -62,24 +61,37 @@ void move_point(Pose& pose, const std::optional<Vec3>& pivot, const Vec3& point,
 // step (median) and 1.6 of lift_hold's 33.5.
 class BodyPoses {
   public:
-    Pose& operator[](btRigidBody* body) {
-        for (Entry& e : entries_) {
-            if (e.body == body) return e.now;
+    struct Entry {
+        btRigidBody* body;
+        Pose was;
+        Pose now;
+        int moves = 0;  // how often the closing has moved it
+    };
+    // Every body that `joints` join.
+    explicit BodyPoses(const std::vector<BoneJoint>& joints) {
+        entries_.reserve(joints.size() + 1);
+        for (const BoneJoint& j : joints) {
+            add(j.parent);
+            add(j.child);
         }
-        const Pose pose = from_bt(body->getWorldTransform());
-        entries_.push_back({body, pose, pose});
-        return entries_.back().now;
+    }
+    Entry& operator[](btRigidBody* body) {
+        return *std::find_if(entries_.begin(), entries_.end(),
+                             [&](const Entry& e) { return e.body == body; });
     }
     // Writes each moved pose back, its move over h added to the body's velocity.
     void write(double h) const;
 
   private:
-    struct Entry {
-        btRigidBody* body;
-        Pose was;
-        Pose now;
-    };
-    std::deque<Entry> entries_;  // a pose handed out stays where it is as more are added
+    void add(btRigidBody* body) {
+        for (const Entry& e : entries_) {
+            if (e.body == body) return;
+        }
+        const Pose pose = from_bt(body->getWorldTransform());
+        entries_.push_back({body, pose, pose});
+    }
+
+    std::vector<Entry> entries_;
 };
 
 // How far past its range a joint turns before it is turned back (radians).
@@ -142,12 +154,28 @@ void BodyPoses::write(double h) const {
 }
 
 void close_joint_gaps(const std::vector<BoneJoint>& joints, double h) {
-    BodyPoses poses;
+    BodyPoses poses(joints);
+    // Each joint's two bodies, and how often each had moved when the joint was last found
+    // closed and within its range: a joint whose bodies have not moved since is not checked
+    // again (jointed/1 lift_hold: 3.9 sweeps a substep, most joints long settled).
+    struct Visit {
+        BodyPoses::Entry* parent;
+        BodyPoses::Entry* child;
+        int parent_moves = -1;
+        int child_moves = -1;
+    };
+    std::vector<Visit> visits;
+    visits.reserve(joints.size());
+    for (const BoneJoint& j : joints) visits.push_back({&poses[j.parent], &poses[j.child]});
     for (int sweep = 0; sweep < kSweeps; ++sweep) {
         bool closed = false;
-        for (const BoneJoint& j : joints) {
-            Pose& parent = poses[j.parent];
-            Pose& child = poses[j.child];
+        for (std::size_t i = 0; i < joints.size(); ++i) {
+            const BoneJoint& j = joints[i];
+            Visit& v = visits[i];
+            if (v.parent->moves == v.parent_moves && v.child->moves == v.child_moves) continue;
+            Pose& parent = v.parent->now;
+            Pose& child = v.child->now;
+            bool moved = false;
             const Vec3 end = parent * j.end_in_parent;
             const Vec3 start = child * j.start_in_child;
             const Vec3 apart = end - start;
@@ -160,17 +188,28 @@ void close_joint_gaps(const std::vector<BoneJoint>& joints, double h) {
                     j.parent_start ? std::optional<Vec3>(parent * *j.parent_start) : std::nullopt;
                 move_point(child, child * j.far_in_child, start, start + child_share * gap);
                 move_point(parent, parent_pivot, end, end - (1.0 - child_share) * gap);
-                closed = true;
+                ++v.parent->moves;
+                ++v.child->moves;
+                moved = true;
             }
-            if (!j.range) continue;
-            const Quat parent_frame = parent.orientation * j.parent_frame;
-            const Quat child_frame = child.orientation * j.child_frame;
-            const std::optional<Quat> allowed =
-                j.range->bring_within(parent_frame.inverse() * child_frame);
-            if (!allowed) continue;
-            turn_about(child, parent * j.end_in_parent,
-                       parent_frame * *allowed * child_frame.inverse());
-            closed = true;
+            if (j.range) {
+                const Quat parent_frame = parent.orientation * j.parent_frame;
+                const Quat child_frame = child.orientation * j.child_frame;
+                const std::optional<Quat> allowed =
+                    j.range->bring_within(parent_frame.inverse() * child_frame);
+                if (allowed) {
+                    turn_about(child, parent * j.end_in_parent,
+                               parent_frame * *allowed * child_frame.inverse());
+                    ++v.child->moves;
+                    moved = true;
+                }
+            }
+            if (moved) {
+                closed = true;
+            } else {
+                v.parent_moves = v.parent->moves;
+                v.child_moves = v.child->moves;
+            }
         }
         // A sweep that closed nothing leaves the next one nothing to close either: a hand
         // whose joints all lie within their give (any hand touching nothing) costs one sweep.
