@@ -96,6 +96,17 @@ TEST_F(BoneJoints, AGapClosesWithEachSideMovingByItsShare) {
     EXPECT_GT(from_bt(first_->getAngularVelocity()).norm(), 0.1);
 }
 
+// The tip bone pulled 1 cm along the finger: turning about its start, the first bone cannot
+// reach it, so it slides, which opens its joint with the palm, already found closed in that
+// sweep. The sweeps after it close that joint again.
+TEST_F(BoneJoints, AJointOpenedByTheNextOneIsClosedAgain) {
+    second_->setWorldTransform(
+        to_bt(Pose{position(*second_) + Vec3(0, 0, -0.01), Quat::Identity()}));
+    close_joint_gaps(joints_, kH);
+    EXPECT_LT(largest_gap(), 0.0003 + 1e-6);   // the joint's give
+    EXPECT_GT(position(*palm_).norm(), 1e-4);  // the palm took its share of the pull
+}
+
 // Flexion, abduction and twist (radians) of a turn, as JointRange measures them.
 Vec3 bend_of(const Quat& turn) {
     const Vec3 tip = turn * Vec3(0, 0, -1);
