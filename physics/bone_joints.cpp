@@ -75,6 +75,7 @@ class BodyPoses {
             add(j.child);
         }
     }
+    // `body` must be one that the joints join.
     Entry& operator[](btRigidBody* body) {
         return *std::find_if(entries_.begin(), entries_.end(),
                              [&](const Entry& e) { return e.body == body; });
