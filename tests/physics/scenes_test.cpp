@@ -187,9 +187,12 @@ TEST(SampleScenes, AHandRestingOnATableIsQuiet) {
     for (const RunOptions& run : {RunOptions{}, jointed}) {
         SCOPED_TRACE(run.drive.value_or("default"));
         EXPECT_LT(run_scene(testing::sample_scene("press_table"), run).metrics.rest_jitter_mm, 0.1);
-        EXPECT_LT(run_scene(pitched_press_table(), run).metrics.rest_jitter_mm, 0.1);
+        const RunResult pitched = run_scene(pitched_press_table(), run);
+        EXPECT_LT(pitched.metrics.rest_jitter_mm, 0.1);
+        if (!run.drive) {
+            EXPECT_LT(pitched.metrics.max_penetration_mm, 0.1);
+        }
     }
-    EXPECT_LT(run_scene(pitched_press_table(), RunOptions{}).metrics.max_penetration_mm, 0.1);
 }
 
 // Pressed 5 cm into a table, every joint stays over its ghost: a thumb bone driven that deep
