@@ -109,8 +109,8 @@ class PhysicalHand {
     Pose target_of(const Body& body, const HandPose& target) const;
     // Where `pose` has `joint`, in the frame `pose` gives `body`.
     Vec3 joint_in(const Body& body, Joint joint, const HandPose& pose) const;
-    // Moves each joint of joined bones toward where `goal` has it on the body before it,
-    // at most kJointRefitSpeed.
+    // Moves each joint of joined bones toward where `goal` has it on the body before it: at
+    // most kJointRefitSpeed while a body touches or nears a collider, at once otherwise.
     void refit_joints(const HandPose& goal, double h);
     // Where and how fast the drive pulls a body at `position` whose target is `goal`, moving
     // at `goal_velocity`: for a body resting on static colliders alone, no further into them
