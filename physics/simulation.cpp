@@ -652,9 +652,13 @@ void Simulation::collect_contacts(ContactIndex& contact_index, ColliderIndex& co
     });
     note_touches();
     if (contact_events_.between_colliders()) collect_collider_contacts(collider_index);
+    // The contact points alone miss a bone deep inside a collider (a jointed hand teleported
+    // into the table met it again with its palm on the top and its fingers beneath), so the
+    // hand's shapes are tested too before it collides again.
     for (auto& slot : hands_) {
         if (slot->simulated && !slot->body->contact_response() &&
-            !penetrating[static_cast<int>(slot->side)]) {
+            !penetrating[static_cast<int>(slot->side)] &&
+            !slot->body->overlaps_colliders(*world_)) {
             slot->body->set_contact_response(true);
         }
     }

@@ -12,6 +12,7 @@ namespace physhand {
 namespace {
 
 using testing::dynamic_box;
+using testing::hand_pose;
 using testing::right_hand;
 using testing::static_box;
 
@@ -318,6 +319,36 @@ TEST(Simulation, AHandClearOfEverythingGoesStraightToItsReturningGhost) {
     EXPECT_LT((sim.hand(HandSide::Right).joints[Joint::Wrist].position - back).norm(), 0.005);
 }
 
+// A ghost teleported into the table, then back above it after a 200 ms hitch (stress seed
+// 5474): the hand is re-seated inside the table and must leave it whole. Before the hand's
+// shapes were tested as well as its contact points, the jointed hand collided again with its
+// palm on the table top and its curled fingers beneath it, 117 mm from the ghost.
+TEST(Simulation, AHandTeleportedIntoTheTableComesOutOfItWhole) {
+    for (const char* drive : {"bones", "jointed"}) {
+        SCOPED_TRACE(drive);
+        SimulationSettings settings;
+        settings.drive = *find_drive(drive);
+        Simulation sim(settings, Vec3(0, -9.81, 0));
+        sim.add_collider(static_box("table", Vec3(0, 0.725, -0.4), Vec3(0.4, 0.025, 0.3)));
+        const Vec3 above(-0.09, 0.83, -0.30);
+        const double curl = 0.7;
+        const Vec3 palm = hand_pose(HandSide::Left, Vec3::Zero(), curl)[Joint::Palm].position;
+        const HandPose in_table = hand_pose(HandSide::Left, Vec3(0.124, 0.71, -0.394) - palm, curl);
+        const HandPose clean = hand_pose(HandSide::Left, above, 0.2);
+        double t = 0.0;
+        for (int f = 0; f < 20; ++f) sim.step_to(t += 1 / 90.0, {clean, HandPose{}});
+        sim.step_to(t += 1 / 90.0, {in_table, HandPose{}});
+        sim.step_to(t += 0.2, {hand_pose(HandSide::Left, above, 0.05), HandPose{}});
+        for (int f = 0; f < 90; ++f) sim.step_to(t += 1 / 90.0, {clean, HandPose{}});
+        for (std::size_t j = 0; j < kJointCount; ++j) {
+            EXPECT_LT(
+                (sim.hand(HandSide::Left).joints.joints[j].position - clean.joints[j].position)
+                    .norm(),
+                0.005)
+                << "joint " << j;
+        }
+    }
+}
 TEST(Simulation, KinematicCollidersMoveAndCarryWhatRestsOnThem) {
     Simulation sim(SimulationSettings{}, Vec3(0, -9.81, 0));
     Collider tray = static_box("tray", Vec3(0, 1, 0), Vec3(0.2, 0.01, 0.2));
