@@ -23,8 +23,9 @@ struct PathologyResult {
     double speed_limit = 0.0;
     std::uint64_t speed_clamps = 0;
     // Clean tracking until, in both hands, every joint that touched nothing in the last
-    // 0.25 s (as tracking error counts them, docs/metrics.md) is within kRecoveredM of its
-    // ghost; inf: not within kRecoveryWindowS.
+    // 0.25 s (as tracking error counts them, docs/metrics.md), and whose ghost does not reach
+    // within its radius and kRecoveredM of the cube, is within kRecoveredM of its ghost; inf:
+    // not within kRecoveryWindowS.
     double recovery_s = 0.0;
 };
 inline constexpr double kRecoveredM = 0.005;
