@@ -44,10 +44,16 @@ TEST(Simulation, PaperDriveFollowsAlgorithmOneThroughBullet) {
     EXPECT_GT(x.norm(), 1e-4);
 }
 
+// The default settings with a builtin drive.
+SimulationSettings driven_by(const char* drive) {
+    SimulationSettings settings;
+    settings.drive = *find_drive(drive);
+    return settings;
+}
+
 // The jointed drive, simulated with nothing near it.
 SimulationSettings awake_jointed_hand() {
-    SimulationSettings settings;
-    settings.drive = *find_drive("jointed");
+    SimulationSettings settings = driven_by("jointed");
     settings.gating = false;
     return settings;
 }
@@ -200,8 +206,7 @@ double to_axis(const HandSolid& capsule, const Vec3& p) {
 TEST(Simulation, HandSolidsAreTheBodiesWhereTheJointsAre) {
     for (const char* drive : {"bones", "implicit"}) {
         SCOPED_TRACE(drive);
-        SimulationSettings settings;
-        settings.drive = *find_drive(drive);
+        SimulationSettings settings = driven_by(drive);
         Simulation sim(settings, Vec3(0, -9.81, 0));
         EXPECT_EQ(sim.hand_solids(HandSide::Right).count, 0u) << "no hand yet";
         // Far from the block first (not simulated), then pressed 4 cm into its top.
@@ -268,8 +273,7 @@ double lowest(const HandSolid& solid) {
 TEST(Simulation, ShownDepthIsHowDeepTheShownHandLiesInAnything) {
     for (const char* drive : {"bones", "implicit"}) {
         SCOPED_TRACE(drive);
-        SimulationSettings settings;
-        settings.drive = *find_drive(drive);
+        SimulationSettings settings = driven_by(drive);
         settings.gating = false;
         Simulation sim(settings, Vec3(0, -9.81, 0));
         for (int f = 1; f <= 10; ++f)
@@ -326,8 +330,7 @@ TEST(Simulation, AHandClearOfEverythingGoesStraightToItsReturningGhost) {
 TEST(Simulation, AHandTeleportedIntoTheTableComesOutOfItWhole) {
     for (const char* drive : {"bones", "jointed"}) {
         SCOPED_TRACE(drive);
-        SimulationSettings settings;
-        settings.drive = *find_drive(drive);
+        SimulationSettings settings = driven_by(drive);
         Simulation sim(settings, Vec3(0, -9.81, 0));
         sim.add_collider(static_box("table", Vec3(0, 0.725, -0.4), Vec3(0.4, 0.025, 0.3)));
         const Vec3 above(-0.09, 0.83, -0.30);
