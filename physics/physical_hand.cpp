@@ -43,7 +43,9 @@ constexpr double kRotationalInertiaRadius = 0.1;
 // sample, had a bone 3 mm from where its ghost put its joint in the third frame. Faster
 // always (1.2 m/s, or at once), stress seeds 1-600 failed one run (23: a hand whose ghost had
 // been teleported into the table still caught in it a second after clean tracking came back);
-// as landed, none of those (and 4 of seeds 1-12000, against 5 at 0.6 m/s always).
+// as landed, none of those (4 of seeds 1-12000, against 5 at 0.6 m/s always, until a hand
+// re-seated in the table collided again only once clear of it, Simulation::collect_contacts;
+// none since).
 constexpr double kJointRefitSpeed = 0.6;
 // How far a joined bone capsule's far end may lie from where its ghost has it (in the frame
 // of the bone's first joint) before the capsule is rebuilt to the ghost's bone, m. At 1 mm a
