@@ -45,6 +45,18 @@ inline Pose interpolate(const Pose& a, const Pose& b, double s) {
     return {a.position + (b.position - a.position) * s, a.orientation.slerp(s, b.orientation)};
 }
 
+// Where `p` is `dt` later, moving on at the given velocities (world frame).
+inline Pose moved_on(const Pose& p, const Vec3& linear_velocity, const Vec3& angular_velocity,
+                     double dt) {
+    Pose out{p.position + dt * linear_velocity, p.orientation};
+    const Vec3 turn = dt * angular_velocity;
+    const double angle = turn.norm();
+    if (angle > 0.0)
+        out.orientation =
+            (Quat(Eigen::AngleAxisd(angle, turn / angle)) * p.orientation).normalized();
+    return out;
+}
+
 // The rotation vector (axis times angle, shortest way) taking `from` to `to`, world frame.
 inline Vec3 rotation_between(const Quat& from, const Quat& to) {
     Quat delta = to * from.conjugate();

@@ -110,9 +110,13 @@ class Simulation {
     // evenly whichever display rate sets its targets. A time not after the last physics frame
     // is reached at the next.
     bool set_kinematic_target(ColliderHandle handle, const Pose& pose, double time_s);
-    // Any collider: placed now, with the given velocities (dynamic only), woken up.
+    // Any collider: placed now (at the time shown), with the given velocities (dynamic only),
+    // woken up.
     bool teleport(ColliderHandle handle, const Pose& pose, const Vec3& linear_velocity,
                   const Vec3& angular_velocity);
+    // As shown at the latest time stepped to, as the hands are: a dynamic body moved on from
+    // the last physics frame at its velocities. Shown where that frame left it, a projectile
+    // in the throw lagged the hand that held it, 14 mm into its fingers at a 72 Hz display.
     std::optional<BodyState> body_state(ColliderHandle handle) const;
     std::size_t collider_count() const;
 
@@ -143,12 +147,12 @@ class Simulation {
     // active). Computed on request: only a caller that draws the hand needs them. Changes no
     // physics.
     HandSolids hand_solids(HandSide side);
-    // How deep the hand as shown (hand_solids) lies in the collider it goes deepest into, m:
-    // what a user sees sink into things. The contact points (last_max_penetration) are taken
-    // before the substep moves the bodies and keep one point of a few per pair, so they can
-    // miss a part pushed deep (a squeezing thumb 20 mm into a cube while they said 3 mm).
-    // Bullet's closest-point queries, on request (a scene run asks each frame); changes no
-    // physics.
+    // How deep the hand as shown (hand_solids) lies in the collider it goes deepest into, that
+    // collider as shown too (body_state), m: what a user sees sink into things. The contact points
+    // (last_max_penetration) are taken before the substep moves the bodies and keep one point of a
+    // few per pair, so they can miss a part pushed deep (a squeezing thumb 20 mm into a cube while
+    // they said 3 mm). Bullet's closest-point queries, on request (a scene run asks each frame);
+    // changes no physics.
     double shown_depth(HandSide side);
     // Every pose, velocity and drive force of both hands and of every collider is finite
     // (the nonfinite_count of docs/metrics.md counts frames where this is false).
@@ -240,6 +244,7 @@ class Simulation {
     double time_s_ = 0.0;
     std::int64_t tick_ = 0;                 // the last physics frame's end, in substeps
     double shown_time_ = 0.0;               // the latest time asked for
+    double shown_ahead_s_ = 0.0;            // how far it lies past the last physics frame
     std::array<HandPose, 2> last_samples_;  // the ghosts given with it (step_to)
     bool have_samples_ = false;
     bool started_ = false;

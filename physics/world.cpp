@@ -488,7 +488,7 @@ void World::for_each_collider_contact(
     }
 }
 
-double World::depth_in_colliders(btCollisionShape& shape, const Pose& pose) const {
+double World::depth_in_colliders(btCollisionShape& shape, const Pose& pose, double ahead_s) const {
     struct Near : btBroadphaseAabbCallback {
         std::vector<const btCollisionObject*> found;
         bool process(const btBroadphaseProxy* proxy) override {
@@ -502,10 +502,38 @@ double World::depth_in_colliders(btCollisionShape& shape, const Pose& pose) cons
     probe.setWorldTransform(to_bt(pose));
     btVector3 lo, hi;
     shape.getAabb(probe.getWorldTransform(), lo, hi);
-    world_->getBroadphase()->aabbTest(lo, hi, near);
+    // Moved on, a collider may reach the probe from as far as it moves meanwhile.
+    const auto moves_on = [&](const btCollisionObject& o) {
+        return ahead_s > 0.0 && !o.isStaticOrKinematicObject() &&
+               o.getActivationState() != ISLAND_SLEEPING;
+    };
+    double reach = 0.0;
+    for (const auto& [handle, e] : colliders_) {
+        if (!moves_on(*e->body)) continue;
+        btVector3 centre;
+        btScalar radius;
+        e->body->getCollisionShape()->getBoundingSphere(centre, radius);
+        reach = std::max(
+            reach, ahead_s * (e->body->getLinearVelocity().length() +
+                              (centre.length() + radius) * e->body->getAngularVelocity().length()));
+    }
+    const btVector3 pad(static_cast<btScalar>(reach), static_cast<btScalar>(reach),
+                        static_cast<btScalar>(reach));
+    world_->getBroadphase()->aabbTest(lo - pad, hi + pad, near);
     double deepest = 0.0;
-    for (const btCollisionObject* collider : near.found)
-        deepest = std::max(deepest, pair_depth(*world_, probe, *collider).depth);
+    for (const btCollisionObject* collider : near.found) {
+        if (!moves_on(*collider)) {
+            deepest = std::max(deepest, pair_depth(*world_, probe, *collider).depth);
+            continue;
+        }
+        const auto* body = static_cast<const btRigidBody*>(collider);
+        btCollisionObject moved;
+        moved.setCollisionShape(const_cast<btCollisionShape*>(body->getCollisionShape()));
+        moved.setWorldTransform(
+            to_bt(moved_on(from_bt(body->getWorldTransform()), from_bt(body->getLinearVelocity()),
+                           from_bt(body->getAngularVelocity()), ahead_s)));
+        deepest = std::max(deepest, pair_depth(*world_, probe, moved).depth);
+    }
     return deepest;
 }
 

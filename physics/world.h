@@ -76,9 +76,10 @@ class World {
     void finish_kinematic_motion();
 
     // How deep a shape placed at `pose` (not in the world) lies in the collider it goes
-    // deepest into, m; 0 in none. By the contact algorithms (physics/pair_depth); changes
-    // nothing.
-    double depth_in_colliders(btCollisionShape& shape, const Pose& pose) const;
+    // deepest into, m; 0 in none, each awake dynamic collider moved on `ahead_s` at its
+    // velocities. By the contact algorithms (physics/pair_depth); changes nothing.
+    double depth_in_colliders(btCollisionShape& shape, const Pose& pose,
+                              double ahead_s = 0.0) const;
 
     // Any collider whose bounds meet the box [lo, hi], or would within `lookahead_s` moving
     // as it moves now (a dynamic one at its speed, a kinematic one toward its target).
