@@ -205,6 +205,11 @@ ColliderShape make_collider_shape(const Collider& c) {
     } else if (s.kind != ShapeKind::Sphere && s.kind != ShapeKind::Capsule) {
         out.shape->setMargin(kMargin);
     }
+    // A box's faces, for World's face-against-triangle contacts: against a mesh's triangles, which
+    // have no inside, Bullet's one point per pair found by GJK let a box rock, and 1 cm boxes
+    // sank through the triangle they lay on.
+    if (s.kind == ShapeKind::Box && c.motion == Motion::Dynamic)
+        static_cast<btBoxShape&>(*out.shape).initializePolyhedralFeatures();
     return out;
 }
 
