@@ -520,8 +520,8 @@ void Simulation::show_hand(HandSlot& slot, double ahead_s, const HandPose& sampl
     slot.shown = slot.state;
     if (!(ahead_s > 0.0) || !slot.state.joints.active) return;
     // Clean tracking tells how a joint moved since the frame: a free joint moves as its
-    // ghost did, a gated hand is its ghost. A joint in contact, or a noisy ghost, carries on
-    // at the frame's velocities instead, so nothing is shown pressed into what stopped it and
+    // ghost did, a gated hand is its ghost. A joint in contact or near, or a noisy ghost, carries
+    // on at the frame's velocities instead, so nothing is shown pressed into what stopped it and
     // the noise the filter took out does not come back; so does every joint when the sample
     // is unusable or has jumped further than a hand moves (the next frame judges it).
     HandPose ghost_now = sample;
@@ -529,23 +529,27 @@ void Simulation::show_hand(HandSlot& slot, double ahead_s, const HandPose& sampl
         ghost_now.active && sanitise(ghost_now) && slot.tracked && slot.noise.passes_clean() &&
         (ghost_now[Joint::Wrist].position - slot.ghost[Joint::Wrist].position).norm() <=
             settings_.reseat_distance;
-    // A joint in contact carries on at the frame's velocity less what would take it further
-    // into what it touches: at a 144 Hz display, the finger that flicks the sphere task's ball
-    // was shown 5.3 mm into it (3.9 with this), and one drawn up the displacement task's wall
-    // 9.5 mm into that (7.9: wedged in the hole's edge, it touches more faces than its contact
+    // A joint in contact with a collider, or near one (HandTouch::gap), carries on at the
+    // frame's velocity less what would take it into what it touches or nears, not as its ghost
+    // moved: at a 144 Hz display, the fingers that flick the sphere task's ball were shown
+    // 5.3 mm into it, and one drawn up the displacement task's wall 9.5 mm into that (now
+    // 0.02 mm and 7.9 mm: wedged in the hole's edge, it touches more faces than its contact
     // points tell).
     std::array<Vec3, kJointCount> velocity = slot.state.linear_velocity;
+    std::array<bool, kJointCount> touches{};
     for (const HandTouch& t : touches_) {
-        if (t.hand != slot.body.get() || t.gap > 0.0) continue;
+        if (t.hand != slot.body.get()) continue;
         for (Joint j : slot.body->carried_joints(t.body)) {
+            touches[index_of(j)] = true;
             Vec3& v = velocity[index_of(j)];
-            const double approach = (v - t.collider_velocity).dot(t.normal);
-            if (approach < 0.0) v -= approach * t.normal;
+            const double closing = (v - t.collider_velocity).dot(t.normal);
+            const double allowed = -t.gap / ahead_s;
+            if (closing < allowed) v -= (closing - allowed) * t.normal;
         }
     }
     for (std::size_t j = 0; j < kJointCount; ++j) {
         Pose& joint = slot.shown.joints.joints[j];
-        if (ghost_moves && !slot.state.in_contact[j]) {
+        if (ghost_moves && !touches[j]) {
             const Pose& then = slot.ghost.joints[j];
             const Pose& now = ghost_now.joints[j];
             joint.position += now.position - then.position;

@@ -52,7 +52,7 @@ cp "$out"/*.csv "$out"/*.svg "$out/overhead.json" "$root/bench/"
     echo
     echo "## Display rates"
     echo
-    echo "\`physhand-display-rates\`: the scenes shown at each display rate and at 90 Hz with each frame up to 2 ms early or late (\`physhand-scene --display-hz R --frame-jitter-ms J\`); the physics steps its own 90 Hz frames whatever the display. free_motion's tracking_error_rms_mm, jerk_rms of the returned wrist and fingertips beside the ghost's (ghost_jerk_rms), repeated_pose_frames and step_us_median (one display frame's call, median of ${REPEAT:-3} runs; at 120 and 144 Hz some calls step no physics frame), then how many of throw, sphere, displacement, stack and lift_hold succeed."
+    echo "\`physhand-display-rates\`: the scenes shown at each display rate and at 90 Hz with each frame up to 2 ms early or late (\`physhand-scene --display-hz R --frame-jitter-ms J\`); the physics steps its own 90 Hz frames whatever the display. free_motion's tracking_error_rms_mm, jerk_rms of the returned wrist and fingertips beside the ghost's (ghost_jerk_rms), repeated_pose_frames and step_us_median (one display frame's call, median of ${REPEAT:-3} runs; at 120 and 144 Hz some calls step no physics frame), then how many of throw, sphere, displacement, stack and lift_hold succeed, and each one's max_shown_depth_mm (docs/metrics.md: the hand as shown against the colliders as shown, at every display time; displacement's is the hand wedged in the wall's hole, 5.25 mm on the 90 Hz frames themselves)."
     echo
     cat "$out/display_rates.md"
     echo
