@@ -529,26 +529,22 @@ void Simulation::show_hand(HandSlot& slot, double ahead_s, const HandPose& sampl
         ghost_now.active && sanitise(ghost_now) && slot.tracked && slot.noise.passes_clean() &&
         (ghost_now[Joint::Wrist].position - slot.ghost[Joint::Wrist].position).norm() <=
             settings_.reseat_distance;
-    // A joint in contact with a collider, or near one (HandTouch::gap), carries on at the
-    // frame's velocity less what would take it into what it touches or nears, not as its ghost
-    // moved: at a 144 Hz display, the fingers that flick the sphere task's ball were shown
-    // 5.3 mm into it, and one drawn up the displacement task's wall 9.5 mm into that (now
-    // 0.02 mm and 7.9 mm: wedged in the hole's edge, it touches more faces than its contact
-    // points tell).
-    std::array<Vec3, kJointCount> velocity = slot.state.linear_velocity;
+    // A joint touching a collider or within kLonePressGive of one (touches_) carries on at the
+    // frame's velocity, not as its ghost moved; and no joint goes further toward a collider than
+    // the gap between them at the frame (gaps_). At a 144 Hz display, the fingers that flick the
+    // sphere task's ball were shown 5.3 mm into it (now 0.02), a finger drawn up the displacement
+    // task's wall 9.5 mm into that (now 5.5; 5.25 on the frames themselves, wedged in the hole's
+    // edge), and the throw's fingers 16 mm into the projectile with it shown where its frame left
+    // it (now 1.5).
     std::array<bool, kJointCount> touches{};
     for (const HandTouch& t : touches_) {
         if (t.hand != slot.body.get()) continue;
-        for (Joint j : slot.body->carried_joints(t.body)) {
-            touches[index_of(j)] = true;
-            Vec3& v = velocity[index_of(j)];
-            const double closing = (v - t.collider_velocity).dot(t.normal);
-            const double allowed = -t.gap / ahead_s;
-            if (closing < allowed) v -= (closing - allowed) * t.normal;
-        }
+        for (Joint j : slot.body->carried_joints(t.body)) touches[index_of(j)] = true;
     }
+    std::array<Vec3, kJointCount> start{};
     for (std::size_t j = 0; j < kJointCount; ++j) {
         Pose& joint = slot.shown.joints.joints[j];
+        start[j] = joint.position;
         if (ghost_moves && !touches[j]) {
             const Pose& then = slot.ghost.joints[j];
             const Pose& now = ghost_now.joints[j];
@@ -557,7 +553,17 @@ void Simulation::show_hand(HandSlot& slot, double ahead_s, const HandPose& sampl
                 (now.orientation * then.orientation.conjugate() * joint.orientation).normalized();
             continue;
         }
-        joint = moved_on(joint, velocity[j], slot.state.angular_velocity[j], ahead_s);
+        joint =
+            moved_on(joint, slot.state.linear_velocity[j], slot.state.angular_velocity[j], ahead_s);
+    }
+    for (const HandGap& g : gaps_) {
+        if (g.hand != slot.body.get()) continue;
+        for (Joint j : slot.body->carried_joints(g.body)) {
+            Vec3& position = slot.shown.joints.joints[index_of(j)].position;
+            const double closing =
+                (position - start[index_of(j)] - ahead_s * g.collider_velocity).dot(g.normal);
+            if (closing < -g.gap) position -= (closing + g.gap) * g.normal;
+        }
     }
 }
 
@@ -640,6 +646,7 @@ void Simulation::collect_contacts(ContactIndex& contact_index, ColliderIndex& co
         if (slot->body) slot->body->clear_touches();
     }
     touches_.clear();
+    gaps_.clear();
     world_->for_each_hand_contact([&](const World::ContactPoint& c) {
         const int tag = c.hand_part->getUserIndex2();
         const int side = tag >> 8;
@@ -648,7 +655,10 @@ void Simulation::collect_contacts(ContactIndex& contact_index, ColliderIndex& co
         if (body < 0) return;
         if (c.distance < 0) penetrating[static_cast<std::size_t>(side)] = true;
         if (!slot.body->contact_response()) return;
-        if (c.distance > kTouchDistance && c.impulse <= 0.0) {
+        const bool near = c.distance > kTouchDistance && c.impulse <= 0.0;
+        gaps_.push_back(
+            {slot.body.get(), body, c.normal, near ? c.distance : 0.0, c.collider_velocity});
+        if (near) {
             // Near a static collider, only a joined bone rests on it (PhysicalHand::note_touch);
             // an unjoined one lands on it. Resting near it too, bones/1 played as before within
             // the benchmark's churn, but the displacement task's cube, placed under 3 mm of noise

@@ -232,6 +232,17 @@ class Simulation {
         Vec3 collider_velocity;  // at the contact point
     };
     std::vector<HandTouch> touches_;
+    // Every hand-collider contact point of the last substep, touching or within the manifolds'
+    // reach (kHandContactReach), for show_hand: a part shown between frames goes no further
+    // toward a collider than its gap.
+    struct HandGap {
+        const PhysicalHand* hand;
+        int body;
+        Vec3 normal;  // from the collider toward the body
+        double gap;   // m, 0 when touching
+        Vec3 collider_velocity;
+    };
+    std::vector<HandGap> gaps_;
     ContactEventLog contact_events_;
     std::map<ColliderHandle, HandImpulse> hand_impulses_;  // not taken yet
     bool hand_impulses_wanted_ = false;
