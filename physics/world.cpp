@@ -513,18 +513,8 @@ double World::depth_in_colliders(btCollisionShape& shape, const Pose& pose, doub
         return ahead_s > 0.0 && !o.isStaticOrKinematicObject() &&
                o.getActivationState() != ISLAND_SLEEPING;
     };
-    double reach = 0.0;
-    for (const auto& [handle, e] : colliders_) {
-        if (!moves_on(*e->body)) continue;
-        btVector3 centre;
-        btScalar radius;
-        e->body->getCollisionShape()->getBoundingSphere(centre, radius);
-        reach = std::max(
-            reach, ahead_s * (e->body->getLinearVelocity().length() +
-                              (centre.length() + radius) * e->body->getAngularVelocity().length()));
-    }
-    const btVector3 pad(static_cast<btScalar>(reach), static_cast<btScalar>(reach),
-                        static_cast<btScalar>(reach));
+    const auto reach = static_cast<btScalar>(std::max(ahead_s, 0.0) * world_->fastest_collider());
+    const btVector3 pad(reach, reach, reach);
     world_->getBroadphase()->aabbTest(lo - pad, hi + pad, near);
     double deepest = 0.0;
     for (const btCollisionObject* collider : near.found) {
