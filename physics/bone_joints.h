@@ -59,6 +59,13 @@ struct BoneJoint {
 // is turned back to its edge about the joint, alone: turning the parent the other way by its
 // share as well, the sweeps did not settle on a finger the wall bent in the displacement scene
 // (joints 2.3 mm apart; 0.76 mm alone).
-void close_joint_gaps(const std::vector<BoneJoint>& joints, double h);
+// A bone in `squeezing` (one the contacts stop short of its ghost, deep in what it holds) stays
+// where the contacts put it for the first sweeps: its parent takes the whole gap, and is the
+// one turned when the bone lies past its range; what the bones before it cannot close then,
+// the later sweeps close by every body's share. Moved by its share from the first, each
+// squeezing bone passed its ghost's curl on into the held object through the bones before it,
+// and a thumb that squeezed less bent aside.
+void close_joint_gaps(const std::vector<BoneJoint>& joints, double h,
+                      const std::vector<const btRigidBody*>& squeezing = {});
 
 }  // namespace physhand

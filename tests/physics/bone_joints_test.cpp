@@ -186,5 +186,43 @@ TEST_F(BoneJoints, ABoneBentPastItsRangeTurnsBackAboutItsJoint) {
     EXPECT_LT(from_bt(first_->getAngularVelocity()).norm(), 1e-9);
 }
 
+// The tip bone stopped 1 cm short (a fingertip held by what it squeezes): the finger bends to
+// meet it and it stays all but where the contact put it. (Turning cannot bring the first
+// bone's end all the way, so that bone slides as well, opening its joint with the palm; the
+// sweeps after the held ones close what is left by every body's share.)
+TEST_F(BoneJoints, ASqueezingBoneStaysAndTheBoneBeforeItTakesTheGap) {
+    const Vec3 away(0.01, 0, 0);
+    const Pose caught{position(*second_) + away, Quat::Identity()};
+    second_->setWorldTransform(to_bt(caught));
+    close_joint_gaps(joints_, kH, {second_.get()});
+    EXPECT_LT(largest_gap(), 0.0003 + 1e-6);
+    EXPECT_LT((position(*second_) - caught.position).norm(), 1e-4);
+    EXPECT_GT((position(*first_) - Vec3(0, 0, -0.05 - kBoneLength / 2)).norm(), 0.004);
+
+    // Not squeezing, it comes halfway to meet the finger.
+    second_->setWorldTransform(to_bt(caught));
+    first_->setWorldTransform(to_bt(Pose{Vec3(0, 0, -0.05 - kBoneLength / 2), Quat::Identity()}));
+    palm_->setWorldTransform(to_bt(Pose{}));
+    close_joint_gaps(joints_, kH);
+    EXPECT_GT((position(*second_) - caught.position).norm(), 0.002);
+}
+
+// Bent 30 degrees back while it squeezes: the bone before it turns instead, so the joint comes
+// back within its range with the squeezing bone all but where it was.
+TEST_F(BoneJoints, ASqueezingBonePastItsRangeTurnsTheBoneBeforeIt) {
+    joints_[1].range = kRange;
+    const Vec3 joint(0, 0, -0.05 - kBoneLength);
+    const Quat back = flexed(-30.0 * std::numbers::pi / 180.0);
+    const Pose bent{joint + back * Vec3(0, 0, -kBoneLength / 2), back};
+    second_->setWorldTransform(to_bt(bent));
+    close_joint_gaps(joints_, kH, {second_.get()});
+    const Quat first = from_bt(first_->getWorldTransform()).orientation;
+    const Quat second = from_bt(second_->getWorldTransform()).orientation;
+    EXPECT_GT(bend_of(first.inverse() * second).x(), kRange.least_flexion() - 2e-3);
+    EXPECT_LT(largest_gap(), 0.0003 + 1e-6);
+    EXPECT_LT((position(*second_) - bent.position).norm(), 1e-3);
+    EXPECT_GT(from_bt(first_->getAngularVelocity()).norm(), 1.0);
+}
+
 }  // namespace
 }  // namespace physhand
