@@ -11,16 +11,20 @@ namespace physhand {
 
 namespace {
 
-// The most sweeps over the hand's joints per substep; they stop once every joint is closed.
-// Squeezing bones are held where they are for the first kHeldSweeps; after them the bones
-// before them may not yet have closed every gap alone (a finger squeezed into lift_hold's cube
-// was left 12 mm apart at 10 sweeps, all of them holding; 27 mm at 50), and the rest close it
-// as any other, each body by its share. At 50 (100 alike), every joint lies within its give
-// in every squeeze and sample scene (0.74 mm before, at 10). Robustness, jointed/1, 3200
-// plays: 3029 at 10 without squeezing bones held, 3033 at 50, 3039 at 50 with them held. Run
-// time per frame (jointed/1, the sample scenes): unchanged but in jitter, +4 us (38 -> 42), and
-// displacement, +7 us (54 -> 61), whose noisy or bent hands 10 sweeps left unclosed.
-constexpr int kSweeps = 50;
+// The most sweeps over the hand's joints per substep (they stop once every joint is closed):
+// kSweeps, or kSqueezedSweeps while a bone squeezes, held where it is for the first
+// kHeldSweeps; after them the bones before it may not have closed every gap alone, and the
+// rest close what is left as any other joint, each body by its share. lift_hold squeezed to
+// curls 0.3-1.0 over 4 shifts, held and the widest joint: 8 of 32 at 10 sweeps without
+// squeezing bones held, 0.47 mm; held for all of 10 sweeps, 28 but 12 mm (its joints left
+// open); held for 10, then closing by shares: 11 at 30 sweeps, 15 at 50 and at 30 with 50
+// while a bone squeezes, all 0.30 mm (the give). Every sample scene's joints then lie within
+// their give (0.74 mm at 10 sweeps). Fingers hooked round a 2 cm bar, their ghosts pulled
+// 10 cm back through it: at 10 sweeps they came through it, joints open; at 30 they hold the
+// hand back, 3.7 mm into the bar once the ghost stops; at 50, 10 mm. Robustness, jointed/1,
+// 3200 plays: 3029 at 10 sweeps without held bones; with them, 3039 at 50, 3032 at 30 and 50.
+constexpr int kSweeps = 30;
+constexpr int kSqueezedSweeps = 50;
 constexpr int kHeldSweeps = 10;
 // Gaps below this are not worth a move (m).
 constexpr double kClosed = 1e-7;
@@ -179,7 +183,8 @@ void close_joint_gaps(const std::vector<BoneJoint>& joints, double h,
     std::vector<Visit> visits;
     visits.reserve(joints.size());
     for (const BoneJoint& j : joints) visits.push_back({&poses[j.parent], &poses[j.child]});
-    for (int sweep = 0; sweep < kSweeps; ++sweep) {
+    const int sweeps = squeezing.empty() ? kSweeps : kSqueezedSweeps;
+    for (int sweep = 0; sweep < sweeps; ++sweep) {
         bool closed = false;
         for (std::size_t i = 0; i < joints.size(); ++i) {
             const BoneJoint& j = joints[i];
