@@ -16,7 +16,7 @@ namespace {
 // kHeldSweeps; after them the bones before it may not have closed every gap alone, and the
 // rest close what is left as any other joint, each body by its share. lift_hold squeezed to
 // curls 0.3-1.0 over 4 shifts, held and the widest joint: 8 of 32 at 10 sweeps without
-// squeezing bones held, 0.47 mm; held for all of 10 sweeps, 28 but 12 mm (its joints left
+// squeezing bones held, 0.69 mm; held for all of 10 sweeps, 28 but 12 mm (its joints left
 // open); held for 10, then closing by shares: 11 at 30 sweeps, 15 at 50 and at 30 with 50
 // while a bone squeezes, all 0.30 mm (the give). Every sample scene's joints then lie within
 // their give (0.74 mm at 10 sweeps). Fingers hooked round a 2 cm bar, their ghosts pulled
