@@ -139,6 +139,14 @@ struct PhysicalHand::Body {
     // Joined bones: it holds what it touches and its ghost lies over kSqueezeReach inside it,
     // beyond how far the palm trails its own (close_joint_gaps leaves it where it is).
     bool squeezing = false;
+    // Joined bones: its pose before the last substep, and how fast it moved over it, the joint
+    // closing's moves included: what read() reports. Its own velocity misreports a bone that
+    // the closing and a contact move back and forth: fingers caught at a bar, still, reported
+    // up to 2.5 m/s (the closing moved them into it every substep, adding the move as
+    // velocity, and the contact pushed them back out).
+    Pose substep_start;
+    Vec3 moved_linear = Vec3::Zero();
+    Vec3 moved_angular = Vec3::Zero();
 };
 
 std::optional<JointRange> joint_range(Joint anchor) {
@@ -312,6 +320,9 @@ void PhysicalHand::seat(const HandPose& target, const HandPose& previous_target,
                 ? btVector3(0, 0, 0)
                 : to_bt(angular_velocity_between(before.orientation, now.orientation, frame_dt)));
         r.clearForces();
+        b->substep_start = now;
+        b->moved_linear = from_bt(r.getLinearVelocity());
+        b->moved_angular = from_bt(r.getAngularVelocity());
         b->last_force = 0.0;
         b->touching_fixed = b->touching_movable = b->near_static = false;
     }
@@ -328,6 +339,7 @@ void PhysicalHand::drive(const HandPose& goal_pose, const HandPose& previous_tar
         from_bt(palm.rigid->getCenterOfMassPosition()) - target_of(palm, goal_pose).position;
     for (auto& b : bodies_) {
         btRigidBody& r = *b->rigid;
+        if (drive_.joined_bones) b->substep_start = from_bt(r.getWorldTransform());
         const Pose goal = target_of(*b, goal_pose);
         const Pose before = target_of(*b, previous_target);
         const Pose now = target_of(*b, target);
@@ -506,6 +518,11 @@ void PhysicalHand::close_joint_gaps(double h) {
         if (b->squeezing) squeezing.push_back(b->rigid.get());
     }
     physhand::close_joint_gaps(joints_, h, squeezing);
+    for (auto& b : bodies_) {
+        const Pose now = from_bt(b->rigid->getWorldTransform());
+        b->moved_linear = (now.position - b->substep_start.position) / h;
+        b->moved_angular = rotation_between(b->substep_start.orientation, now.orientation) / h;
+    }
 }
 
 void PhysicalHand::set_contact_response(bool enabled) {
@@ -555,9 +572,10 @@ void PhysicalHand::read(const HandPose& target, PhysicalHandState& out) const {
             joint.position = body * local;
         }
         out.joints.joints[j] = joint;
-        const Vec3 w = from_bt(r.getAngularVelocity());
+        const bool joined = drive_.joined_bones;
+        const Vec3 w = joined ? b.moved_angular : from_bt(r.getAngularVelocity());
         out.angular_velocity[j] = w;
-        out.linear_velocity[j] = from_bt(r.getLinearVelocity()) +
+        out.linear_velocity[j] = (joined ? b.moved_linear : from_bt(r.getLinearVelocity())) +
                                  w.cross(joint.position - from_bt(r.getCenterOfMassPosition()));
         out.drive_force[j] = b.last_force;
         const std::optional<Joint> parent = joint_parent(joint_id);

@@ -148,6 +148,53 @@ TEST(SampleScenes, AJointedHandBendsAsAHandDoes) {
     EXPECT_LT(furthest, 2.0 * std::numbers::pi / 180.0);
 }
 
+// Fingers curled round a 2 cm bar, their ghosts then pulled 10 cm back through it and held
+// still: once the hand is still, its joints report no motion. Each bone reported its Bullet
+// velocity, and the joints, still, up to 2.5 m/s: every substep the joint closing moved the
+// caught bones into the bar, adding the move as velocity, and a contact pushed them back.
+TEST(JointedHand, FingersCaughtAtABarReportTheMotionTheyMake) {
+    const Scene scene = parse_scene(R"({
+      "format": "physhand-scene/1", "name": "caught_at_a_bar", "duration_s": 5.0,
+      "colliders": [{"id": "bar", "shape": "box", "half_extents": [0.2, 0.01, 0.01],
+                     "motion": "static", "pose": {"position": [0.1, 0.95, -0.45]}}],
+      "hands": {"right": {"keyframes": [
+        {"t": 0.0, "wrist": {"position": [0.1222, 1.0, -0.25]}, "curl": [0, 0, 0, 0, 0]},
+        {"t": 1.0, "wrist": {"position": [0.1222, 0.985, -0.36]}},
+        {"t": 2.0, "wrist": {"position": [0.1222, 0.985, -0.36]},
+         "curl": [0.1, 0.8, 0.8, 0.8, 0.8]},
+        {"t": 3.5, "wrist": {"position": [0.1222, 0.985, -0.26]}},
+        {"t": 5.0, "wrist": {"position": [0.1222, 0.985, -0.26]}}]}}})",
+                                    ".");
+    RunOptions jointed;
+    jointed.drive = "jointed";
+    Simulation sim(settings_for(jointed), scene.gravity);
+    for (const Collider& c : scene.colliders) sim.add_collider(c);
+    const TrackedHands tracked(scene);
+    const auto ghosts_at = [&](double t) {
+        return std::array<HandPose, 2>{tracked.ghost(HandSide::Left, t),
+                                       tracked.ghost(HandSide::Right, t)};
+    };
+    HandPose before;
+    double widest_gap = 0.0, most_moved = 0.0, fastest = 0.0;
+    for (int f = 1; frame_time_s(f) < scene.duration_s; ++f) {
+        sim.step_sampling(frame_time_s(f), ghosts_at);
+        const PhysicalHandState& hand = sim.hand(HandSide::Right);
+        widest_gap = std::max(widest_gap, hand.max_joint_gap);
+        if (frame_time_s(f) > 4.0) {
+            for (std::size_t j = 0; j < kJointCount; ++j) {
+                most_moved =
+                    std::max(most_moved,
+                             (hand.joints.joints[j].position - before.joints[j].position).norm());
+                fastest = std::max(fastest, hand.linear_velocity[j].norm());
+            }
+        }
+        before = hand.joints;
+    }
+    EXPECT_LT(widest_gap, 0.00035);
+    EXPECT_LT(most_moved, 1e-4);
+    EXPECT_LT(fastest, 0.01);
+}
+
 // app_lift is played by SampleApp.AppEngineScenesMatchThePhysicsRunner.
 TEST(SampleScenes, EverySceneFileIsCoveredAbove) {
     int count = 0;
