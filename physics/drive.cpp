@@ -76,7 +76,7 @@ std::optional<DriveSettings> find_drive(std::string_view name) {
 }
 
 Vec3 drive_force(const DriveSettings& drive, double mass, const LinearState& body,
-                 const LinearState& target, double h) {
+                 const LinearState& target, double h, double strength) {
     const Vec3 error = body.position - target.position;
     Vec3 force;
     if (drive.law == DriveLaw::Explicit) {
@@ -86,7 +86,7 @@ Vec3 drive_force(const DriveSettings& drive, double mass, const LinearState& bod
                                               drive.stiffness / mass, drive.damping / mass, h);
         force = mass * (v_next - body.velocity) / h;
     }
-    return clamp_norm(force, drive.force_limit);
+    return clamp_norm(force, strength * drive.force_limit);
 }
 
 Vec3 drive_torque(const DriveSettings& drive, double mass, const Eigen::Matrix3d& inertia_world,

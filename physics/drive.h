@@ -56,8 +56,9 @@ struct LinearState {
     Vec3 position;
     Vec3 velocity;
 };
+// `strength` scales the drive's force limit for this body.
 Vec3 drive_force(const DriveSettings& drive, double mass, const LinearState& body,
-                 const LinearState& target, double h);
+                 const LinearState& target, double h, double strength = 1.0);
 
 // Torque for one body: `inertia_world` is the body's world inertia tensor. A body `resting` on
 // what it cannot move (a static or kinematic collider, and nothing it could move) turns
