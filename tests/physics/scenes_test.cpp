@@ -19,6 +19,28 @@ namespace {
 
 class SampleScene : public ::testing::TestWithParam<std::string> {};
 
+// `scene` played frame by frame by a jointed hand following the scene's script.
+RunOptions jointed_drive() {
+    RunOptions jointed;
+    jointed.drive = "jointed";
+    return jointed;
+}
+
+struct JointedPlay {
+    explicit JointedPlay(const Scene& scene)
+        : sim(settings_for(jointed_drive()), scene.gravity), tracked(scene) {
+        for (const Collider& c : scene.colliders) sim.add_collider(c);
+    }
+    void step(int frame) {
+        sim.step_sampling(frame_time_s(frame), [&](double t) {
+            return std::array<HandPose, 2>{tracked.ghost(HandSide::Left, t),
+                                           tracked.ghost(HandSide::Right, t)};
+        });
+    }
+    Simulation sim;
+    TrackedHands tracked;
+};
+
 TEST_P(SampleScene, SucceedsWithTheDefaultDrive) {
     const RunResult r = run_scene(testing::sample_scene(GetParam()), RunOptions{});
     for (const PredicateResult& p : r.predicates) {
@@ -84,8 +106,7 @@ TEST(SampleScenes, AnAppsOwnPostTipsOverAsTheLayersOwnWould) {
 // next ghosts have them while it touches nothing (at 0.6 m/s: 2.98 mm apart in the third
 // frame).
 TEST(SampleScenes, AJointedHandStaysInOnePiece) {
-    RunOptions jointed;
-    jointed.drive = "jointed";
+    const RunOptions jointed = jointed_drive();
     for (const char* name : {"throw", "sphere", "displacement", "stack", "free_motion",
                              "press_table", "lift_hold", "jitter"}) {
         const RunResult r = run_scene(testing::sample_scene(name), jointed);
@@ -101,8 +122,7 @@ TEST(SampleScenes, AJointedHandStaysInOnePiece) {
 // the cube, which slipped out past the thumb from a curl of 0.5 (2 of 8 held), contact points
 // 7 mm deep.
 TEST(SampleScenes, AJointedHandSqueezingTightHoldsInOnePiece) {
-    RunOptions jointed;
-    jointed.drive = "jointed";
+    const RunOptions jointed = jointed_drive();
     int held = 0;
     for (int step = 0; step < 8; ++step) {
         const double curl = 0.3 + 0.1 * step;
@@ -119,19 +139,11 @@ TEST(SampleScenes, AJointedHandSqueezingTightHoldsInOnePiece) {
 // back (180 degrees), bent a middle joint 47 degrees back and twisted one by 103.
 TEST(SampleScenes, AJointedHandBendsAsAHandDoes) {
     const Scene scene = testing::sample_scene("displacement");
-    RunOptions jointed;
-    jointed.drive = "jointed";
-    Simulation sim(settings_for(jointed), scene.gravity);
-    for (const Collider& c : scene.colliders) sim.add_collider(c);
-    const TrackedHands tracked(scene);
-    const auto ghosts_at = [&](double t) {
-        return std::array<HandPose, 2>{tracked.ghost(HandSide::Left, t),
-                                       tracked.ghost(HandSide::Right, t)};
-    };
+    JointedPlay play(scene);
     double furthest = 0.0;  // past a range, radians
     for (int f = 1; frame_time_s(f) < scene.duration_s; ++f) {
-        sim.step_sampling(frame_time_s(f), ghosts_at);
-        const HandPose& hand = sim.hand(HandSide::Right).joints;
+        play.step(f);
+        const HandPose& hand = play.sim.hand(HandSide::Right).joints;
         for (Joint first : kFingerFirstBone) {
             for (std::size_t bone = 0; bone < 3; ++bone) {
                 const Joint anchor = static_cast<Joint>(index_of(first) + bone);
@@ -165,20 +177,12 @@ TEST(JointedHand, FingersCaughtAtABarReportTheMotionTheyMake) {
         {"t": 3.5, "wrist": {"position": [0.1222, 0.985, -0.26]}},
         {"t": 5.0, "wrist": {"position": [0.1222, 0.985, -0.26]}}]}}})",
                                     ".");
-    RunOptions jointed;
-    jointed.drive = "jointed";
-    Simulation sim(settings_for(jointed), scene.gravity);
-    for (const Collider& c : scene.colliders) sim.add_collider(c);
-    const TrackedHands tracked(scene);
-    const auto ghosts_at = [&](double t) {
-        return std::array<HandPose, 2>{tracked.ghost(HandSide::Left, t),
-                                       tracked.ghost(HandSide::Right, t)};
-    };
+    JointedPlay play(scene);
     HandPose before;
     double widest_gap = 0.0, most_moved = 0.0, fastest = 0.0;
     for (int f = 1; frame_time_s(f) < scene.duration_s; ++f) {
-        sim.step_sampling(frame_time_s(f), ghosts_at);
-        const PhysicalHandState& hand = sim.hand(HandSide::Right);
+        play.step(f);
+        const PhysicalHandState& hand = play.sim.hand(HandSide::Right);
         widest_gap = std::max(widest_gap, hand.max_joint_gap);
         if (frame_time_s(f) > 4.0) {
             for (std::size_t j = 0; j < kJointCount; ++j) {
@@ -248,8 +252,7 @@ Scene pitched_press_table() {
 // resting only when touching it).
 TEST(SampleScenes, AHandRestingOnATableIsQuiet) {
     ASSERT_EQ(default_drive().substeps, 1);
-    RunOptions jointed;
-    jointed.drive = "jointed";
+    const RunOptions jointed = jointed_drive();
     for (const RunOptions& run : {RunOptions{}, jointed}) {
         SCOPED_TRACE(run.drive.value_or("default"));
         EXPECT_LT(run_scene(testing::sample_scene("press_table"), run).metrics.rest_jitter_mm, 0.1);
