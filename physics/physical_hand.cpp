@@ -38,7 +38,7 @@ constexpr double kSqueezeReach = 0.01;
 // A thumb bone that squeezes pushes up to twice the force limit: one thumb opposes four
 // fingers, and at the limit of a finger bone it gave way to them. lift_hold squeezed to
 // curls 0.3-1.0 over 16 shifts, bones/1: 124 of 128 held (113), contact points at most 2.7 mm
-// deep (4.4); 1.5 and 3 times gave the same. Always twice as strong, the thumb also pushed
+// deep (4.4); 1.5 and 3 times held as many over 8 shifts. Always twice as strong, the thumb pushed
 // the thrown cube harder and lower (robustness, bones/1, 400 plays: 384 -> 358, the throw
 // missing pyramid_10); only while squeezing, 3062 of 3200 plays (3061). Unjoined bones only:
 // the joined thumb, bent back by the squeeze, slides off the cube however hard it pushes
