@@ -64,7 +64,8 @@ struct BoneJoint {
 // one turned when the bone lies past its range; what the bones before it cannot close then,
 // the later sweeps close by every body's share. Moved by its share from the first, each
 // squeezing bone passed its ghost's curl on into the held object through the bones before it,
-// and a thumb that squeezed less bent aside.
+// and a thumb that squeezed less bent aside. Nor does a squeezing bone take its move as
+// velocity: that drove it on into what it held every substep.
 void close_joint_gaps(const std::vector<BoneJoint>& joints, double h,
                       const std::vector<const btRigidBody*>& squeezing = {});
 

@@ -42,7 +42,8 @@ constexpr double kSqueezeReach = 0.01;
 // the thrown cube harder and lower (robustness, bones/1, 400 plays: 384 -> 358, the throw
 // missing pyramid_10); only while squeezing, 3062 of 3200 plays (3061). Unjoined bones only:
 // the joined thumb, bent back by the squeeze, slides off the cube however hard it pushes
-// (jointed/1, 128 squeezes: 44 held against 48).
+// (jointed/1, 128 squeezes: 44 held against 48; 75 against 74 once a squeezing bone took no
+// velocity from its joints' closing).
 constexpr double kThumbSqueezeStrength = 2.0;
 constexpr double kMinRadius = 0.004;
 // Every hand body turns like a 10 cm ball of its mass. A finger capsule's own inertia about

@@ -207,6 +207,31 @@ TEST_F(BoneJoints, ASqueezingBoneStaysAndTheBoneBeforeItTakesTheGap) {
     EXPECT_GT((position(*second_) - caught.position).norm(), 0.002);
 }
 
+// Pulled 1 cm along the finger while it squeezes, with the palm held fixed: the bone before it
+// cannot reach it, so the later sweeps move it too, and it takes none of that move as velocity.
+// Kept as velocity, the move drove a squeezing bone on into what it held every substep, the
+// joint pulling it one way and the contact the other, and spun the cube out of the grip.
+TEST_F(BoneJoints, ASqueezingBoneMovedByItsJointKeepsItsVelocity) {
+    palm_ = make(0.0, Vec3::Zero());
+    joints_[0].parent = palm_.get();
+    const Vec3 velocity(0.0, 0.05, 0.0);
+    const Pose caught{position(*second_) + Vec3(0, 0, -0.01), Quat::Identity()};
+    second_->setWorldTransform(to_bt(caught));
+    second_->setLinearVelocity(to_bt(velocity));
+    close_joint_gaps(joints_, kH, {second_.get()});
+    EXPECT_LT(largest_gap(), 0.0003 + 1e-6);
+    EXPECT_GT((position(*second_) - caught.position).norm(), 0.002);
+    EXPECT_LT((from_bt(second_->getLinearVelocity()) - velocity).norm(), 1e-9);
+    EXPECT_LT(from_bt(second_->getAngularVelocity()).norm(), 1e-9);
+
+    // Not squeezing, it takes the move as velocity.
+    second_->setWorldTransform(to_bt(caught));
+    second_->setLinearVelocity(to_bt(velocity));
+    first_->setWorldTransform(to_bt(Pose{Vec3(0, 0, -0.05 - kBoneLength / 2), Quat::Identity()}));
+    close_joint_gaps(joints_, kH);
+    EXPECT_GT((from_bt(second_->getLinearVelocity()) - velocity).norm(), 0.1);
+}
+
 // Bent 30 degrees back while it squeezes: the bone before it turns instead, so the joint comes
 // back within its range with the squeezing bone all but where it was.
 TEST_F(BoneJoints, ASqueezingBonePastItsRangeTurnsTheBoneBeforeIt) {

@@ -118,9 +118,10 @@ TEST(SampleScenes, AJointedHandStaysInOnePiece) {
 
 // Squeezed ever tighter (lift_hold's final curls 0.3 to 1.0), the jointed hand stays in one
 // piece and holds the cube in most squeezes: a bone the cube stops is held there while the
-// bones before it bend. Moved by its share instead, each finger passed its whole curl on into
-// the cube, which slipped out past the thumb from a curl of 0.5 (2 of 8 held), contact points
-// 7 mm deep.
+// bones before it bend, and takes no velocity from that closing. Moved by its share instead,
+// each finger passed its whole curl on into the cube, which slipped out past the thumb from a
+// curl of 0.5 (2 of 8 held), contact points 7 mm deep; taking the closing's move as velocity,
+// 4 of 8 held. A cube that spins out of the grip sweeps an edge into the thumb (3.2 mm at 0.7).
 TEST(SampleScenes, AJointedHandSqueezingTightHoldsInOnePiece) {
     const RunOptions jointed = jointed_drive();
     int held = 0;
@@ -129,9 +130,9 @@ TEST(SampleScenes, AJointedHandSqueezingTightHoldsInOnePiece) {
         const RunResult r = run_scene(squeezed(testing::sample_scene("lift_hold"), curl), jointed);
         held += r.success ? 1 : 0;
         EXPECT_LT(r.metrics.max_joint_gap_mm, 0.35) << curl;
-        EXPECT_LT(r.metrics.max_penetration_mm, 3.0) << curl;
+        EXPECT_LT(r.metrics.max_penetration_mm, r.success ? 2.0 : 3.5) << curl;
     }
-    EXPECT_GE(held, 4);
+    EXPECT_GE(held, 5);
 }
 
 // The jointed hand's bones bend within a human hand's ranges: in displacement, where the wall
