@@ -1,8 +1,11 @@
 #include "scene_variants.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <random>
+#include <stdexcept>
 #include <type_traits>
 #include <utility>
 
@@ -55,6 +58,23 @@ void for_each_time(Scene& scene, F&& scale) {
     }
 }
 
+// Applies `move` to every pose in the scene: colliders and their paths, the hands' keyframed
+// wrists and recorded joints.
+template <typename F>
+void for_each_pose(Scene& scene, F&& move) {
+    for (Collider& c : scene.colliders) {
+        move(c.pose);
+        for (TimedPose& p : c.path) move(p.pose);
+    }
+    for (auto& hand : scene.hands) {
+        if (!hand) continue;
+        for (Keyframe& k : hand->keyframes) move(k.wrist);
+        for (RecordedSample& s : hand->recorded) {
+            for (Pose& j : s.hand.joints) move(j);
+        }
+    }
+}
+
 Vec3 mirror_point(const Vec3& p) {
     return Vec3(-p.x(), p.y(), p.z());
 }
@@ -71,21 +91,11 @@ void mirror_shape(Shape& shape) {
 Scene mirrored(const Scene& input) {
     Scene scene = input;
     scene.gravity = mirror_point(scene.gravity);
-    for (Collider& c : scene.colliders) {
-        // Shapes are symmetric about their own axes except hulls and meshes, whose vertices
-        // are reflected in the collider's frame; the frame itself is reflected as a pose.
-        c.pose = mirror_x(c.pose);
-        for (TimedPose& p : c.path) p.pose = mirror_x(p.pose);
-        mirror_shape(c.shape);
-    }
+    // Shapes are symmetric about their own axes except hulls and meshes, whose vertices are
+    // reflected in the collider's frame; the frame itself is reflected as a pose.
+    for_each_pose(scene, [](Pose& pose) { pose = mirror_x(pose); });
+    for (Collider& c : scene.colliders) mirror_shape(c.shape);
     std::swap(scene.hands[0], scene.hands[1]);
-    for (auto& hand : scene.hands) {
-        if (!hand) continue;
-        for (Keyframe& k : hand->keyframes) k.wrist = mirror_x(k.wrist);
-        for (RecordedSample& s : hand->recorded) {
-            for (Pose& j : s.hand.joints) j = mirror_x(j);
-        }
-    }
     for (Dropout& d : scene.tracking.dropouts)
         d.hand = d.hand == HandSide::Left ? HandSide::Right : HandSide::Left;
     for (Predicate& p : scene.success) {
@@ -97,17 +107,7 @@ Scene mirrored(const Scene& input) {
 
 Scene shifted(const Scene& input, const Vec3& offset) {
     Scene scene = input;
-    for (Collider& c : scene.colliders) {
-        c.pose.position += offset;
-        for (TimedPose& p : c.path) p.pose.position += offset;
-    }
-    for (auto& hand : scene.hands) {
-        if (!hand) continue;
-        for (Keyframe& k : hand->keyframes) k.wrist.position += offset;
-        for (RecordedSample& s : hand->recorded) {
-            for (Pose& j : s.hand.joints) j.position += offset;
-        }
-    }
+    for_each_pose(scene, [&](Pose& pose) { pose.position += offset; });
     for (Predicate& p : scene.success) {
         std::visit(
             [&](auto& predicate) {
@@ -120,6 +120,33 @@ Scene shifted(const Scene& input, const Vec3& offset) {
                 }
             },
             p);
+    }
+    return scene;
+}
+
+Scene turned(const Scene& input, double degrees) {
+    const double quarters = degrees / 90.0;
+    const bool quarter_turn = std::abs(quarters - std::round(quarters)) < 1e-9;
+    const bool has_region =
+        std::any_of(input.success.begin(), input.success.end(),
+                    [](const Predicate& p) { return std::holds_alternative<InsidePredicate>(p); });
+    if (has_region && !quarter_turn)
+        throw std::invalid_argument(
+            "turned: scene '" + input.name +
+            "' has an 'inside' region, which turns only by multiples of 90 degrees");
+    Scene scene = input;
+    const Quat turn(Eigen::AngleAxisd(degrees * std::numbers::pi / 180.0, Vec3::UnitY()));
+    for_each_pose(scene, [&](Pose& pose) {
+        pose.position = turn * pose.position;
+        pose.orientation = (turn * pose.orientation).normalized();
+    });
+    scene.gravity = turn * scene.gravity;
+    for (Predicate& p : scene.success) {
+        if (auto* inside = std::get_if<InsidePredicate>(&p)) {
+            inside->center = turn * inside->center;
+            if (std::lround(quarters) % 2 != 0)
+                std::swap(inside->half_extents.x(), inside->half_extents.z());
+        }
     }
     return scene;
 }

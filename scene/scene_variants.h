@@ -44,6 +44,11 @@ Scene mirrored(const Scene& scene);
 // elsewhere: a contact-rich run's outcome can turn on the last bit of a float (the
 // robustness benchmark plays each variant at several sub-millimetre offsets).
 Scene shifted(const Scene& scene, const Vec3& offset);
+// The scene turned by `degrees` about the vertical through the origin, everything in it and
+// its regions with it: the same task done facing another way, which a runtime's reference
+// space may put anywhere. A scene with an `inside` region (a box along the axes) turns only
+// by multiples of 90 degrees; any other turn throws std::invalid_argument.
+Scene turned(const Scene& scene, double degrees);
 // Every dynamic collider `factor` times as heavy, the motion unchanged: a person cannot see
 // what a thing weighs and reaches for it as for the scene's own.
 Scene heavier(const Scene& scene, double factor);

@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <map>
+#include <numbers>
 #include <set>
+#include <stdexcept>
+#include <string>
 
 #include "../physics/test_scenes.h"
 #include "tracking.h"
@@ -67,6 +70,51 @@ TEST(SceneVariants, AShiftedSceneMovesEverythingInItAndItsRegions) {
                                  held->min_y + offset.y());
             }
         }
+    }
+}
+
+// Turned about the vertical, every pose turns with the scene, hands included, and a region
+// turns by quarter turns, its box's sides swapped; any other turn of a scene with a region
+// is refused, naming it.
+TEST(SceneVariants, ATurnedSceneTurnsEverythingInItAndItsRegions) {
+    const Quat turn(Eigen::AngleAxisd(std::numbers::pi / 6.0, Vec3::UnitY()));
+    const Scene scene = sample_scene("lift_hold");
+    const Scene t = turned(scene, 30.0);
+    for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
+        EXPECT_LT((t.colliders[i].pose.position - turn * scene.colliders[i].pose.position).norm(),
+                  1e-12)
+            << scene.colliders[i].id;
+    }
+    for (double time : {0.0, 2.5, 4.1}) {
+        const HandPose before =
+            evaluate_script(*scene.hand(HandSide::Right), HandSide::Right, time);
+        const HandPose after = evaluate_script(*t.hand(HandSide::Right), HandSide::Right, time);
+        for (std::size_t j = 0; j < kJointCount; ++j) {
+            EXPECT_LT((after.joints[j].position - turn * before.joints[j].position).norm(), 1e-9);
+            EXPECT_GT(
+                std::abs(after.joints[j].orientation.dot(turn * before.joints[j].orientation)),
+                1 - 1e-9);
+        }
+    }
+    const Scene back = turned(t, -30.0);
+    EXPECT_LT(
+        (back.find_collider("cube")->pose.position - scene.find_collider("cube")->pose.position)
+            .norm(),
+        1e-12);
+
+    const Scene displacement = sample_scene("displacement");
+    const InsidePredicate& hole = std::get<InsidePredicate>(displacement.success[0]);
+    const InsidePredicate& quarter =
+        std::get<InsidePredicate>(turned(displacement, 90.0).success[0]);
+    EXPECT_LT((quarter.center - Vec3(hole.center.z(), hole.center.y(), -hole.center.x())).norm(),
+              1e-12);
+    EXPECT_EQ(quarter.half_extents,
+              Vec3(hole.half_extents.z(), hole.half_extents.y(), hole.half_extents.x()));
+    try {
+        turned(displacement, 30.0);
+        ADD_FAILURE() << "a region turned by 30 degrees";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("inside"), std::string::npos) << e.what();
     }
 }
 
