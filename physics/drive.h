@@ -35,6 +35,9 @@ struct DriveSettings {
     GhostSmoothing smoothing;  // of the ghost before the drive follows it
     // Bone capsules only: each bone stays joined to the body before it (bone_joints).
     bool joined_bones = false;
+    // How many moves a hand part is given each substep to leave what it went into
+    // (hand_depenetration.h).
+    int depenetration_moves = 1;
 };
 
 // No drive force exceeds this, whatever the limit: past it, an explicit drive's overshoot

@@ -84,18 +84,25 @@ struct MoveOut {
     PairDepth before;  // the pair as found before the move
 };
 
-// Moves `part` out of `other` to kHandDepthAllowed.
-MoveOut move_out(btCollisionWorld& world, btRigidBody& part, const btCollisionObject& other) {
+// Moves `part` out of `other` to kHandDepthAllowed, in at most `moves` moves.
+MoveOut move_out(btCollisionWorld& world, btRigidBody& part, const btCollisionObject& other,
+                 int moves) {
     const PairDepth found = depth_now(world, part, other);
-    const double excess = found.depth - kHandDepthAllowed;
-    if (excess <= 0.0) return {false, found};
-    move_part(part, found.out * static_cast<btScalar>(excess));
-    return {true, found};
+    PairDepth now = found;
+    bool moved = false;
+    for (int move = 0; move < moves; ++move) {
+        const double excess = now.depth - kHandDepthAllowed;
+        if (excess <= 0.0) break;
+        move_part(part, now.out * static_cast<btScalar>(excess));
+        moved = true;
+        if (move + 1 < moves) now = depth_now(world, part, other);
+    }
+    return {moved, found};
 }
 
 }  // namespace
 
-void depenetrate_hands(btCollisionWorld& world) {
+void depenetrate_hands(btCollisionWorld& world, int moves) {
     btDispatcher& dispatcher = *world.getDispatcher();
     // Ordered by the parts' place in the manifold list, so a run repeats exactly.
     std::vector<btRigidBody*> order;
@@ -118,13 +125,13 @@ void depenetrate_hands(btCollisionWorld& world) {
         bool moved = false;
         std::vector<PairDepth> found;
         for (const Touch& touch : t.movable) {
-            const MoveOut m = move_out(world, *part, *touch.other);
+            const MoveOut m = move_out(world, *part, *touch.other, moves);
             moved |= m.moved;
             found.push_back(m.before);
         }
         if (moved) {
             for (const Touch& touch : t.fixed) {
-                if (move_out(world, *part, *touch.other).moved)
+                if (move_out(world, *part, *touch.other, moves).moved)
                     settle_claims(*touch.manifold, *part, depth_now(world, *part, *touch.other));
             }
         }

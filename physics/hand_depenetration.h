@@ -14,8 +14,10 @@ inline constexpr double kHandDepthAllowed = 0.001;
 // moved out to that depth along the way out of its deepest point, the part alone: the
 // collider keeps its place and has only the solver's impulses, so the grip presses as it
 // did and launches nothing. A part so moved into a fixed collider is moved out of that too.
+// One move along the deepest point's way out can leave a part deeper than allowed where an
+// edge turned under it in the substep; up to `moves` moves are made.
 // The part's points with movable colliders that claim more depth than the pair has (kept
 // friction anchors, measured along their old normals) are then put at its deepest point.
-void depenetrate_hands(btCollisionWorld& world);
+void depenetrate_hands(btCollisionWorld& world, int moves = 1);
 
 }  // namespace physhand

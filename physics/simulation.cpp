@@ -154,6 +154,7 @@ Simulation::Simulation(const SimulationSettings& settings, const Vec3& gravity)
         hands_[static_cast<int>(side)] = std::make_unique<HandSlot>();
         hands_[static_cast<int>(side)]->side = side;
     }
+    world_->set_hand_depenetration_moves(settings.drive.depenetration_moves);
 }
 
 Simulation::~Simulation() {
@@ -166,6 +167,7 @@ void Simulation::set_drive(const DriveSettings& drive) {
     if (drive.substeps < 1) throw std::invalid_argument("drive: substeps must be >= 1");
     const double old_h = 1.0 / (settings_.frame_rate_hz * settings_.drive.substeps);
     settings_.drive = drive;
+    world_->set_hand_depenetration_moves(drive.depenetration_moves);
     tick_ = static_cast<std::int64_t>(std::floor(
         static_cast<double>(tick_) * old_h * settings_.frame_rate_hz * drive.substeps + 0.5));
     for (auto& slot : hands_) {

@@ -72,6 +72,7 @@ class HandWorld : public btDiscreteDynamicsWorld {
     }
     // Only contact events need approach speeds.
     void set_measure_approach(bool measure) { measure_approach_ = measure; }
+    void set_depenetration_moves(int moves) { depenetration_moves_ = moves; }
     // How fast a pair approached before the last substep's solver (0 when not measured).
     double approach_speed(const btPersistentManifold* m) const {
         const auto it = approach_speed_.find(m);
@@ -96,7 +97,7 @@ class HandWorld : public btDiscreteDynamicsWorld {
                 fastest_collider_ = std::max(fastest_collider_, max_point_speed(body));
         }
         btDiscreteDynamicsWorld::integrateTransforms(h);
-        depenetrate_hands(*this);
+        depenetrate_hands(*this, depenetration_moves_);
     }
 
   private:
@@ -129,6 +130,7 @@ class HandWorld : public btDiscreteDynamicsWorld {
     SpeedCheck last_check_;
     double fastest_collider_ = 0.0;
     std::unordered_map<const btPersistentManifold*, double> approach_speed_;
+    int depenetration_moves_ = 1;
     bool measure_approach_ = false;
 };
 
@@ -342,6 +344,10 @@ void World::remove_hand_body(btRigidBody* body) {
 
 void World::set_measure_approach(bool measure) {
     world_->set_measure_approach(measure);
+}
+
+void World::set_hand_depenetration_moves(int moves) {
+    world_->set_depenetration_moves(moves);
 }
 
 bool World::needs_step() const {

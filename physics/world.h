@@ -103,6 +103,8 @@ class World {
     };
     // Whether ContactPoint::approach_speed is measured (otherwise 0).
     void set_measure_approach(bool measure);
+    // How many moves a hand part is given to leave what it went into (depenetrate_hands).
+    void set_hand_depenetration_moves(int moves);
     // Hand-versus-collider contact points, re-measured at the current poses.
     void for_each_hand_contact(const std::function<void(const ContactPoint&)>& visit) const;
     // Contact points between two colliders: `hand_part` null, `collider` the first, `other`
