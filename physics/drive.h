@@ -94,7 +94,12 @@ inline constexpr double kRestingPressDepth = 0.002;
 // touching, 1259, but a finger drawn across a cube pressed in again each time it came clear
 // and dragged it 16 mm; 2 mm gave 631 of 800 against 612, 4 mm 618. A part that held the
 // object and no longer does (its opposite has let go) gives up all its reach until it comes
-// clear of it (Simulation's kOpposedShare).
+// clear of it (Simulation's kOpposedShare). Giving up all its reach while its ghost leaves the
+// object (outward along the normal at over 2 cm/s against the object) kept the displacement
+// task's cube, twice as heavy, in its hole as the hand withdrew (the thumb alone lay on it, its
+// ghost 12 mm in where the cube had turned onto it), but the sphere flicked under 30 Hz tracking
+// (seed 8) missed at every shift (robustness, bones/1, 3200 plays: 3062 -> 3039); measured
+// against the ghost's own speed, a fingertip pressed 1 cm into a cube dragged it 18 mm, not 30.
 inline constexpr double kLonePressGive = 0.003;
 Vec3 drive_torque(const DriveSettings& drive, double mass, const Eigen::Matrix3d& inertia_world,
                   const Quat& orientation, const Vec3& angular_velocity, const Quat& target,
