@@ -1,15 +1,16 @@
 // physhand-robustness: variant_success (docs/metrics.md). Plays every variant of the paper scenes
 // and lift_hold (scene/scene_variants) for every drive and writes the success per family
 // and overall, each failure with its cause, as CSV and Markdown, then the squeeze sweep of
-// lift_hold and the mass sweep of every task. `--repeat N` is the number of seeds of the
-// noise, tracking and dropout families; `--shifts N` plays each variant N times, the scene
-// moved by 0, 0.44, 0.87 ... mm each time (scene/scene_variants shifted): whether a
+// lift_hold, the mass sweep and the dropout sweep of every task. `--repeat N` is the number of
+// seeds of the noise, tracking and dropout families; `--shifts N` plays each variant N times, the
+// scene moved by 0, 0.44, 0.87 ... mm each time (scene/scene_variants shifted): whether a
 // contact-rich run succeeds can turn on the last bit of a float, so a change is judged on many
 // plays of each variant, not one.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -38,6 +39,10 @@ const std::vector<std::pair<std::string, int>> kConfigurations = {
 // The mass sweep's factors: the 4 cm, 80 g cubes the hand holds from 24 g (light plastic) to
 // 400 g (nearly solid iron), and everything else that moves with them.
 const std::vector<double> kMassFactors = {0.3, 0.5, 1.0, 1.5, 2.0, 3.0, 5.0};
+
+// The dropout sweep: how long the hand is lost, and how often a loss starts through a task.
+const std::vector<double> kLossLengths = {0.3, 0.5, 0.7, 0.9};  // s
+constexpr double kLossSpacing = 0.5;                            // s
 
 // The k-th play's offset: sub-millimetre, along no axis.
 Vec3 shift_of(int k) {
@@ -86,6 +91,50 @@ RunOptions run_of(const std::string& column) {
     run.drive = column.substr(0, slash);
     run.substeps = std::stoi(column.substr(slash + 1));
     return run;
+}
+
+// A sweep's cell: how many of the plays `plays_of` makes of each task succeeded in `column`,
+// then the tasks that failed in any, with how many of their plays succeeded.
+std::string sweep_cell(const std::vector<Scene>& tasks, const std::string& column,
+                       const std::function<std::vector<Scene>(const Scene&)>& plays_of) {
+    Tally all;
+    std::string failed;
+    for (const Scene& task : tasks) {
+        Tally t;
+        for (const Scene& play : plays_of(task)) {
+            ++t.played;
+            t.passed += run_scene(play, run_of(column)).success;
+        }
+        all.played += t.played;
+        all.passed += t.passed;
+        if (t.passed < t.played) {
+            failed += (failed.empty() ? " (" : ", ") + task.name + " " + std::to_string(t.passed) +
+                      "/" + std::to_string(t.played);
+        }
+    }
+    return std::to_string(all.passed) + '/' + std::to_string(all.played) +
+           (failed.empty() ? "" : failed + ")");
+}
+
+// The task with its right hand lost for `length` seconds, once for each start kLossSpacing
+// apart from 1 s on, the loss ending at least half a second before the task does.
+std::vector<Scene> with_losses(const Scene& task, double length) {
+    std::vector<Scene> plays;
+    for (double from = 1.0; from + length < task.duration_s - 0.5; from += kLossSpacing) {
+        Scene play = task;
+        play.tracking.dropouts.push_back({HandSide::Right, from, from + length});
+        plays.push_back(std::move(play));
+    }
+    return plays;
+}
+
+// A table's head: its first column's title, then one column per drive configuration.
+std::string table_head(const std::string& first, const std::vector<std::string>& columns) {
+    std::string head = "| " + first + " |";
+    for (const std::string& c : columns) head += ' ' + c + " |";
+    head += "\n|---|";
+    for (std::size_t i = 0; i < columns.size(); ++i) head += "---|";
+    return head + '\n';
 }
 
 std::string csv_field(const std::string& text) {
@@ -151,11 +200,7 @@ int main(int argc, char** argv) {
     }
 
     std::ostringstream md;
-    md << "| family |";
-    for (const std::string& c : columns) md << ' ' << c << " |";
-    md << "\n|---|";
-    for (std::size_t i = 0; i < columns.size(); ++i) md << "---|";
-    md << '\n';
+    md << table_head("family", columns);
     families.push_back("overall");
     for (const std::string& family : families) {
         md << "| " << (family == "overall" ? "**overall**" : family) << " |";
@@ -174,11 +219,7 @@ int main(int argc, char** argv) {
           "fingers' final curl raised from 0.3 to 1.0, max_penetration_mm (in brackets "
           "max_shown_depth_mm, how deep the hand as shown went), whether the cube stayed held "
           "and, if it did, squeeze_push_mm: how far from the unsqueezed cube it ends.\n\n"
-          "| final curl |";
-    for (const std::string& c : columns) md << ' ' << c << " |";
-    md << "\n|---|";
-    for (std::size_t i = 0; i < columns.size(); ++i) md << "---|";
-    md << '\n';
+       << table_head("final curl", columns);
     if (bench::selected(options->only_scenes, std::string("lift_hold"))) {
         const Scene lift = load_scene(options->scenes_dir / "lift_hold.json");
         std::vector<Vec3> unsqueezed;
@@ -207,11 +248,8 @@ int main(int argc, char** argv) {
           "motion unchanged (scene/scene_variants heavier), played at each of the "
        << options->shifts
        << " shifts: how many plays succeeded, then the tasks that failed in any, with how many "
-          "of their plays succeeded.\n\n| mass |";
-    for (const std::string& c : columns) md << ' ' << c << " |";
-    md << "\n|---|";
-    for (std::size_t i = 0; i < columns.size(); ++i) md << "---|";
-    md << '\n';
+          "of their plays succeeded.\n\n"
+       << table_head("mass", columns);
     std::vector<Scene> tasks;
     for (const std::string& name : kScenes) {
         if (bench::selected(options->only_scenes, name))
@@ -220,23 +258,28 @@ int main(int argc, char** argv) {
     for (double factor : kMassFactors) {
         md << "| x" << factor << " |";
         for (const std::string& c : columns) {
-            Tally all;
-            std::string failed;
-            for (const Scene& task : tasks) {
-                const Scene heavy = heavier(task, factor);
-                Tally t;
-                for (int shift = 0; shift < options->shifts; ++shift) {
-                    ++t.played;
-                    t.passed += run_scene(shifted(heavy, shift_of(shift)), run_of(c)).success;
-                }
-                all.played += t.played;
-                all.passed += t.passed;
-                if (t.passed < t.played) {
-                    failed += (failed.empty() ? " (" : ", ") + task.name + " " +
-                              std::to_string(t.passed) + "/" + std::to_string(t.played);
-                }
-            }
-            md << ' ' << all.passed << '/' << all.played << (failed.empty() ? "" : failed + ")")
+            md << ' ' << sweep_cell(tasks, c, [&](const Scene& task) {
+                std::vector<Scene> plays;
+                for (int shift = 0; shift < options->shifts; ++shift)
+                    plays.push_back(shifted(heavier(task, factor), shift_of(shift)));
+                return plays;
+            }) << " |";
+        }
+        md << '\n';
+    }
+    md << "\n### Dropouts\n\nEach task with the hand lost once for 0.3 to 0.9 s, the loss "
+          "starting at 1 s and then every "
+       << kLossSpacing
+       << " s for as long as it ends half a second before the task does (the robustness "
+          "family's losses last 300 ms): how many plays succeeded, then the tasks that failed "
+          "in any, with how many of their plays succeeded. A loss over a release (the throw's, "
+          "the sphere's flick) keeps the fingers closed through it, as the hand last was.\n\n"
+       << table_head("lost for", columns);
+    for (double length : kLossLengths) {
+        md << "| " << length << " s |";
+        for (const std::string& c : columns) {
+            md << ' '
+               << sweep_cell(tasks, c, [&](const Scene& task) { return with_losses(task, length); })
                << " |";
         }
         md << '\n';

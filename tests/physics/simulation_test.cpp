@@ -303,7 +303,11 @@ TEST(Simulation, ShortDropoutsHoldTheHandAndLongOnesLetGo) {
         EXPECT_TRUE(sim.hand(HandSide::Right).joints.active);
     }
     EXPECT_LT((sim.hand(HandSide::Right).joints[Joint::Wrist].position - held).norm(), 1e-3);
-    for (; f <= 90; ++f) sim.step_to(f / 90.0, {HandPose{}, HandPose{}});
+    for (; f <= 110; ++f) {  // 1.0 s lost: the grace period's end
+        sim.step_to(f / 90.0, {HandPose{}, HandPose{}});
+        EXPECT_TRUE(sim.hand(HandSide::Right).joints.active);
+    }
+    for (; f <= 115; ++f) sim.step_to(f / 90.0, {HandPose{}, HandPose{}});
     EXPECT_FALSE(sim.hand(HandSide::Right).joints.active);
 }
 
