@@ -259,9 +259,10 @@ int main(int argc, char** argv) {
         md << "| x" << factor << " |";
         for (const std::string& c : columns) {
             md << ' ' << sweep_cell(tasks, c, [&](const Scene& task) {
+                const Scene heavy = heavier(task, factor);
                 std::vector<Scene> plays;
                 for (int shift = 0; shift < options->shifts; ++shift)
-                    plays.push_back(shifted(heavier(task, factor), shift_of(shift)));
+                    plays.push_back(shifted(heavy, shift_of(shift)));
                 return plays;
             }) << " |";
         }
