@@ -188,8 +188,9 @@ class Simulation {
     void step_substeps(int substeps);
     // The box holding `ghost` and, while it is simulated, the slot's physical hand.
     void bounds_with_hand(const HandSlot& slot, const HandPose& ghost, Vec3& lo, Vec3& hi) const;
-    // Whether any collider lies within the box holding the simulated hand and `ghost`.
-    bool way_blocked(const HandSlot& slot, const HandPose& ghost) const;
+    // Whether the simulated hand touches or nears a collider it can move (or be moved with),
+    // or one lies within the box holding the hand and `ghost`.
+    bool movable_in_way(const HandSlot& slot, const HandPose& ghost) const;
     // Takes the step's ghost sample (`step_dt` after the last) and decides whether the hand
     // is simulated in it.
     void update_hand_gate(HandSlot& slot, const HandPose& ghost, double step_dt);

@@ -407,16 +407,27 @@ double travel_of(const btCollisionObject& o, double lookahead_s, double kinemati
 }  // namespace
 
 bool World::any_collider_near(const Vec3& lo, const Vec3& hi, double lookahead_s) const {
+    return collider_near(lo, hi, lookahead_s, false);
+}
+
+bool World::any_movable_collider_near(const Vec3& lo, const Vec3& hi) const {
+    return collider_near(lo, hi, 0.0, true);
+}
+
+bool World::collider_near(const Vec3& lo, const Vec3& hi, double lookahead_s,
+                          bool movable_only) const {
     struct Near : btBroadphaseAabbCallback {
         Vec3 lo, hi;
         // 0: whatever the broadphase finds near; else each found collider's own travel in that
         // time decides whether it comes near.
         double lookahead_s = 0.0;
         double kinematic_travel = 0.0;
+        bool movable_only = false;
         bool found = false;
         bool process(const btBroadphaseProxy* proxy) override {
             const auto* o = static_cast<const btCollisionObject*>(proxy->m_clientObject);
             if (role_of(o) != BodyRole::Collider) return true;
+            if (movable_only && motion_of(*o) == Motion::Static) return true;
             const auto* plane = dynamic_cast<const btStaticPlaneShape*>(o->getCollisionShape());
             if (!plane) {
                 if (lookahead_s <= 0.0) {
@@ -442,6 +453,7 @@ bool World::any_collider_near(const Vec3& lo, const Vec3& hi, double lookahead_s
     } near;
     near.lo = lo;
     near.hi = hi;
+    near.movable_only = movable_only;
     broadphase_->aabbTest(to_bt(lo), to_bt(hi), near);
     if (near.found || !(lookahead_s > 0.0)) return near.found;
     // Nothing near now: what moves may come near within the lookahead.

@@ -327,6 +327,30 @@ TEST(Simulation, AHandClearOfEverythingGoesStraightToItsReturningGhost) {
     EXPECT_LT((sim.hand(HandSide::Right).joints[Joint::Wrist].position - back).norm(), 0.005);
 }
 
+// Lost under a table, a hand whose ghost comes back above it is re-seated there at once: with
+// nothing movable near there is nothing to bring along or to fling. Eased back, it crept along
+// under the table toward the ghost until the ease left it 15 cm behind (the stress run's seed
+// 898, `jointed`: 1.08 s).
+TEST(Simulation, AHandAmongStaticCollidersAloneIsReseatedOnItsReturningGhost) {
+    for (const char* drive : {"bones", "jointed"}) {
+        SCOPED_TRACE(drive);
+        SimulationSettings settings = driven_by(drive);
+        Simulation sim(settings, Vec3(0, -9.81, 0));
+        sim.add_collider(static_box("table", Vec3(0, 0.725, -0.4), Vec3(0.4, 0.025, 0.3)));
+        const Vec3 under(0.1, 0.66, -0.3);
+        const Vec3 above(0.1, 0.86, -0.3);
+        int f = 1;
+        for (; f <= 20; ++f) sim.step_to(f / 90.0, {HandPose{}, right_hand(under, 0.0)});
+        ASSERT_TRUE(sim.hand(HandSide::Right).simulated);
+        for (; f <= 47; ++f) sim.step_to(f / 90.0, {HandPose{}, HandPose{}});  // 0.3 s lost
+        for (const int last = f + 5; f < last; ++f)
+            sim.step_to(f / 90.0, {HandPose{}, right_hand(above, 0.0)});
+        EXPECT_EQ(sim.guard_counters().reacquisitions, 1u);
+        EXPECT_EQ(sim.guard_counters().reseats, 1u);
+        EXPECT_LT((sim.hand(HandSide::Right).joints[Joint::Wrist].position - above).norm(), 0.005);
+    }
+}
+
 // A ghost teleported into the table, then back above it after a 200 ms hitch (stress seed
 // 5474): the hand is re-seated inside the table and must leave it whole. Before the hand's
 // shapes were tested as well as its contact points, the jointed hand collided again with its
