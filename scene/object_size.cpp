@@ -1,5 +1,6 @@
-// The size family of scene_variants: the objects a hand handles made larger or smaller, the
-// hands adapted to them as a person would adapt.
+// The variants of scene_variants that change the objects a hand handles: made larger or
+// smaller, the hands adapted to them as a person would adapt (the size family), or lying off the
+// place the hand grasps (the grip-offset sweep of the robustness benchmark).
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -277,6 +278,16 @@ Scene resized(const Scene& input, double scale, std::string& adapted) {
         }
     }
     adapted = what.str();
+    return scene;
+}
+
+Scene grasped_off_centre(const Scene& input, const Vec3& offset) {
+    Scene scene = input;
+    for (std::size_t i = 0; i < input.colliders.size(); ++i) {
+        const Collider& c = input.colliders[i];
+        if (resizable(c) && closest_approach(input, c) <= kHandledDistance)
+            scene.colliders[i].pose.position += offset;
+    }
     return scene;
 }
 

@@ -72,6 +72,10 @@ Scene sped_up_aiming(const Scene& scene, double speed, std::string& adapted);
 // change kept wherever the finger is curled. `adapted` says what changed.
 inline constexpr double kHandledDistance = 0.02;  // m
 Scene resized(const Scene& scene, double scale, std::string& adapted);
+// Every dynamic object a hand handles (as `resized` finds them) moved by `offset`, the motion
+// unchanged: the hand closes where it always does, so its grasp lands `offset` off the place the
+// script reaches for, as a person's grasp lands a few millimetres beside a centre they aimed at.
+Scene grasped_off_centre(const Scene& scene, const Vec3& offset);
 // The final grip made tighter: the four fingers' curl raised to at least `curl` from the
 // keyframe where each hand's curls reach their final values (docs/metrics.md
 // squeeze_penetration_mm: the ghost's fingers close further into what the hand holds).

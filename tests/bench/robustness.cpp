@@ -1,11 +1,11 @@
 // physhand-robustness: variant_success (docs/metrics.md). Plays every variant of the paper scenes
 // and lift_hold (scene/scene_variants) for every drive and writes the success per family
 // and overall, each failure with its cause, as CSV and Markdown, then the squeeze sweep of
-// lift_hold, the mass sweep and the dropout sweep of every task. `--repeat N` is the number of
-// seeds of the noise, tracking and dropout families; `--shifts N` plays each variant N times, the
-// scene moved by 0, 0.44, 0.87 ... mm each time (scene/scene_variants shifted): whether a
-// contact-rich run succeeds can turn on the last bit of a float, so a change is judged on many
-// plays of each variant, not one.
+// lift_hold, the mass sweep, the dropout sweep and the off-centre grasp sweep of every task.
+// `--repeat N` is the number of seeds of the noise, tracking and dropout families; `--shifts N`
+// plays each variant N times, the scene moved by 0, 0.44, 0.87 ... mm each time
+// (scene/scene_variants shifted): whether a contact-rich run succeeds can turn on the last bit of a
+// float, so a change is judged on many plays of each variant, not one.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -43,6 +43,12 @@ const std::vector<double> kMassFactors = {0.3, 0.5, 1.0, 1.5, 2.0, 3.0, 5.0};
 // The dropout sweep: how long the hand is lost, and how often a loss starts through a task.
 const std::vector<double> kLossLengths = {0.3, 0.5, 0.7, 0.9};  // s
 constexpr double kLossSpacing = 0.5;                            // s
+
+// The off-centre grasp sweep: how far the objects the hand handles lie from where the script
+// grasps them (a fingertip's width and half of it), along each horizontal axis either way.
+const std::vector<double> kGraspOffsets = {0.003, 0.006};  // m
+const std::vector<Vec3> kGraspDirections = {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitZ(),
+                                            -Vec3::UnitZ()};
 
 // The k-th play's offset: sub-millimetre, along no axis.
 Vec3 shift_of(int k) {
@@ -282,6 +288,30 @@ int main(int argc, char** argv) {
             md << ' '
                << sweep_cell(tasks, c, [&](const Scene& task) { return with_losses(task, length); })
                << " |";
+        }
+        md << '\n';
+    }
+    md << "\n### Off-centre grasps\n\nEach task with the objects its hand handles lying off "
+          "where the script grasps them (scene/scene_variants grasped_off_centre), along +x, -x, "
+          "+z and -z, the motion unchanged, as a person's grasp lands beside the centre they "
+          "aimed at, played at each of the "
+       << options->shifts
+       << " shifts: how many plays succeeded, then the tasks that failed in any, with how many "
+          "of their plays succeeded. What the hand carries to a place (the displacement task's "
+          "hole) arrives off it by as much.\n\n"
+       << table_head("off by", columns);
+    for (double offset : kGraspOffsets) {
+        md << "| " << offset * 1e3 << " mm |";
+        for (const std::string& c : columns) {
+            md << ' ' << sweep_cell(tasks, c, [&](const Scene& task) {
+                std::vector<Scene> plays;
+                for (const Vec3& direction : kGraspDirections) {
+                    const Scene off = grasped_off_centre(task, offset * direction);
+                    for (int shift = 0; shift < options->shifts; ++shift)
+                        plays.push_back(shifted(off, shift_of(shift)));
+                }
+                return plays;
+            }) << " |";
         }
         md << '\n';
     }

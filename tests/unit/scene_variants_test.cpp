@@ -265,6 +265,32 @@ TEST(SceneVariants, HeavierScalesTheDynamicCollidersOnly) {
     EXPECT_EQ(heavy.name, "stack/mass/x2.5");
 }
 
+// The throw's projectile lies off the grasp, the pyramid it is thrown at where it was; the
+// stack's three cubes (the base too, which the hand places on) move alike, so the stack's
+// target moves with what the hand carries.
+TEST(SceneVariants, AnOffCentreGraspMovesWhatTheHandHandlesOnly) {
+    const Vec3 offset(0.006, 0.0, -0.003);
+    const std::map<std::string, std::set<std::string>> handled = {
+        {"throw", {"projectile"}}, {"stack", {"base", "middle", "top"}}, {"lift_hold", {"cube"}}};
+    for (const auto& [name, moved] : handled) {
+        const Scene scene = sample_scene(name);
+        const Scene off = grasped_off_centre(scene, offset);
+        ASSERT_EQ(off.colliders.size(), scene.colliders.size());
+        for (std::size_t i = 0; i < scene.colliders.size(); ++i) {
+            const Collider& before = scene.colliders[i];
+            const Vec3 expected =
+                before.pose.position + (moved.count(before.id) ? offset : Vec3::Zero());
+            EXPECT_EQ(off.colliders[i].pose.position, expected) << name << ' ' << before.id;
+        }
+        for (double t : {0.0, 2.5, 4.1}) {
+            const HandPose a = evaluate_script(*scene.hand(HandSide::Right), HandSide::Right, t);
+            const HandPose b = evaluate_script(*off.hand(HandSide::Right), HandSide::Right, t);
+            for (std::size_t j = 0; j < kJointCount; ++j)
+                EXPECT_EQ(a.joints[j].position, b.joints[j].position) << name << ' ' << j;
+        }
+    }
+}
+
 TEST(SceneVariants, ASqueezeClosesTheFinalGripOnly) {
     const Scene scene = sample_scene("lift_hold");
     const Scene tight = squeezed(scene, 0.8);
