@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "test_scenes.h"
@@ -49,6 +50,13 @@ SimulationSettings driven_by(const char* drive) {
     SimulationSettings settings;
     settings.drive = *find_drive(drive);
     return settings;
+}
+
+// A builtin drive's hands over the sample scenes' table.
+std::unique_ptr<Simulation> at_the_table(const char* drive) {
+    auto sim = std::make_unique<Simulation>(driven_by(drive), Vec3(0, -9.81, 0));
+    sim->add_collider(static_box("table", Vec3(0, 0.725, -0.4), Vec3(0.4, 0.025, 0.3)));
+    return sim;
 }
 
 // The jointed drive, simulated with nothing near it.
@@ -334,20 +342,18 @@ TEST(Simulation, AHandClearOfEverythingGoesStraightToItsReturningGhost) {
 TEST(Simulation, AHandAmongStaticCollidersAloneIsReseatedOnItsReturningGhost) {
     for (const char* drive : {"bones", "jointed"}) {
         SCOPED_TRACE(drive);
-        SimulationSettings settings = driven_by(drive);
-        Simulation sim(settings, Vec3(0, -9.81, 0));
-        sim.add_collider(static_box("table", Vec3(0, 0.725, -0.4), Vec3(0.4, 0.025, 0.3)));
+        const auto sim = at_the_table(drive);
         const Vec3 under(0.1, 0.66, -0.3);
         const Vec3 above(0.1, 0.86, -0.3);
         int f = 1;
-        for (; f <= 20; ++f) sim.step_to(f / 90.0, {HandPose{}, right_hand(under, 0.0)});
-        ASSERT_TRUE(sim.hand(HandSide::Right).simulated);
-        for (; f <= 47; ++f) sim.step_to(f / 90.0, {HandPose{}, HandPose{}});  // 0.3 s lost
+        for (; f <= 20; ++f) sim->step_to(f / 90.0, {HandPose{}, right_hand(under, 0.0)});
+        ASSERT_TRUE(sim->hand(HandSide::Right).simulated);
+        for (; f <= 47; ++f) sim->step_to(f / 90.0, {HandPose{}, HandPose{}});  // 0.3 s lost
         for (const int last = f + 5; f < last; ++f)
-            sim.step_to(f / 90.0, {HandPose{}, right_hand(above, 0.0)});
-        EXPECT_EQ(sim.guard_counters().reacquisitions, 1u);
-        EXPECT_EQ(sim.guard_counters().reseats, 1u);
-        EXPECT_LT((sim.hand(HandSide::Right).joints[Joint::Wrist].position - above).norm(), 0.005);
+            sim->step_to(f / 90.0, {HandPose{}, right_hand(above, 0.0)});
+        EXPECT_EQ(sim->guard_counters().reacquisitions, 1u);
+        EXPECT_EQ(sim->guard_counters().reseats, 1u);
+        EXPECT_LT((sim->hand(HandSide::Right).joints[Joint::Wrist].position - above).norm(), 0.005);
     }
 }
 
@@ -358,22 +364,20 @@ TEST(Simulation, AHandAmongStaticCollidersAloneIsReseatedOnItsReturningGhost) {
 TEST(Simulation, AHandTeleportedIntoTheTableComesOutOfItWhole) {
     for (const char* drive : {"bones", "jointed"}) {
         SCOPED_TRACE(drive);
-        SimulationSettings settings = driven_by(drive);
-        Simulation sim(settings, Vec3(0, -9.81, 0));
-        sim.add_collider(static_box("table", Vec3(0, 0.725, -0.4), Vec3(0.4, 0.025, 0.3)));
+        const auto sim = at_the_table(drive);
         const Vec3 above(-0.09, 0.83, -0.30);
         const double curl = 0.7;
         const Vec3 palm = hand_pose(HandSide::Left, Vec3::Zero(), curl)[Joint::Palm].position;
         const HandPose in_table = hand_pose(HandSide::Left, Vec3(0.124, 0.71, -0.394) - palm, curl);
         const HandPose clean = hand_pose(HandSide::Left, above, 0.2);
         double t = 0.0;
-        for (int f = 0; f < 20; ++f) sim.step_to(t += 1 / 90.0, {clean, HandPose{}});
-        sim.step_to(t += 1 / 90.0, {in_table, HandPose{}});
-        sim.step_to(t += 0.2, {hand_pose(HandSide::Left, above, 0.05), HandPose{}});
-        for (int f = 0; f < 90; ++f) sim.step_to(t += 1 / 90.0, {clean, HandPose{}});
+        for (int f = 0; f < 20; ++f) sim->step_to(t += 1 / 90.0, {clean, HandPose{}});
+        sim->step_to(t += 1 / 90.0, {in_table, HandPose{}});
+        sim->step_to(t += 0.2, {hand_pose(HandSide::Left, above, 0.05), HandPose{}});
+        for (int f = 0; f < 90; ++f) sim->step_to(t += 1 / 90.0, {clean, HandPose{}});
         for (std::size_t j = 0; j < kJointCount; ++j) {
             EXPECT_LT(
-                (sim.hand(HandSide::Left).joints.joints[j].position - clean.joints[j].position)
+                (sim->hand(HandSide::Left).joints.joints[j].position - clean.joints[j].position)
                     .norm(),
                 0.005)
                 << "joint " << j;
