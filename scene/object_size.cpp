@@ -1,6 +1,6 @@
 // The variants of scene_variants that change the objects a hand handles: made larger or
 // smaller, the hands adapted to them as a person would adapt (the size family), or lying off the
-// place the hand grasps (the grip-offset sweep of the robustness benchmark).
+// place the hand grasps (the off-centre grasp sweep of the robustness benchmark).
 #include <algorithm>
 #include <cmath>
 #include <iomanip>

@@ -45,7 +45,8 @@ const std::vector<double> kLossLengths = {0.3, 0.5, 0.7, 0.9};  // s
 constexpr double kLossSpacing = 0.5;                            // s
 
 // The off-centre grasp sweep: how far the objects the hand handles lie from where the script
-// grasps them (a fingertip's width and half of it), along each horizontal axis either way.
+// grasps them (by as much as a person's aim at a centre misses), along each horizontal axis
+// either way.
 const std::vector<double> kGraspOffsets = {0.003, 0.006};  // m
 const std::vector<Vec3> kGraspDirections = {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitZ(),
                                             -Vec3::UnitZ()};
