@@ -56,6 +56,11 @@ Vec3 shift_of(int k) {
     return Vec3(0.00037, 0.0, -0.00023) * k;
 }
 
+// `scene` played at each of the first `shifts` shifts, added to `plays`.
+void add_shifted(std::vector<Scene>& plays, const Scene& scene, int shifts) {
+    for (int shift = 0; shift < shifts; ++shift) plays.push_back(shifted(scene, shift_of(shift)));
+}
+
 // Where a run left the dynamic body `id`.
 Vec3 final_position(const RunResult& r, const std::string& id) {
     const auto body = std::find_if(r.bodies.begin(), r.bodies.end(),
@@ -266,10 +271,8 @@ int main(int argc, char** argv) {
         md << "| x" << factor << " |";
         for (const std::string& c : columns) {
             md << ' ' << sweep_cell(tasks, c, [&](const Scene& task) {
-                const Scene heavy = heavier(task, factor);
                 std::vector<Scene> plays;
-                for (int shift = 0; shift < options->shifts; ++shift)
-                    plays.push_back(shifted(heavy, shift_of(shift)));
+                add_shifted(plays, heavier(task, factor), options->shifts);
                 return plays;
             }) << " |";
         }
@@ -306,11 +309,9 @@ int main(int argc, char** argv) {
         for (const std::string& c : columns) {
             md << ' ' << sweep_cell(tasks, c, [&](const Scene& task) {
                 std::vector<Scene> plays;
-                for (const Vec3& direction : kGraspDirections) {
-                    const Scene off = grasped_off_centre(task, offset * direction);
-                    for (int shift = 0; shift < options->shifts; ++shift)
-                        plays.push_back(shifted(off, shift_of(shift)));
-                }
+                for (const Vec3& direction : kGraspDirections)
+                    add_shifted(plays, grasped_off_centre(task, offset * direction),
+                                options->shifts);
                 return plays;
             }) << " |";
         }
