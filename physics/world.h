@@ -84,7 +84,8 @@ class World {
     // Any collider whose bounds meet the box [lo, hi], or would within `lookahead_s` moving
     // as it moves now (a dynamic one at its speed, a kinematic one toward its target).
     bool any_collider_near(const Vec3& lo, const Vec3& hi, double lookahead_s = 0.0) const;
-    // The same for the colliders a hand can move or be moved with (dynamic and kinematic).
+    // Any collider a hand can move or be moved with (dynamic or kinematic) whose bounds meet
+    // the box [lo, hi] now.
     bool any_movable_collider_near(const Vec3& lo, const Vec3& hi) const;
 
     struct ContactPoint {
