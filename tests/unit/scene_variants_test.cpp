@@ -104,8 +104,8 @@ TEST(SceneVariants, ATurnedSceneTurnsEverythingInItAndItsRegions) {
 
     const Scene displacement = sample_scene("displacement");
     const InsidePredicate& hole = std::get<InsidePredicate>(displacement.success[0]);
-    const InsidePredicate& quarter =
-        std::get<InsidePredicate>(turned(displacement, 90.0).success[0]);
+    const Scene quartered = turned(displacement, 90.0);
+    const InsidePredicate& quarter = std::get<InsidePredicate>(quartered.success[0]);
     EXPECT_LT((quarter.center - Vec3(hole.center.z(), hole.center.y(), -hole.center.x())).norm(),
               1e-12);
     EXPECT_EQ(quarter.half_extents,
