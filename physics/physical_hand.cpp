@@ -158,6 +158,10 @@ struct PhysicalHand::Body {
     Pose substep_start;
     Vec3 moved_linear = Vec3::Zero();
     Vec3 moved_angular = Vec3::Zero();
+    // How far the last joint closing moved its centre.
+    Vec3 closing_move = Vec3::Zero();
+    // How fast its target moves, over the frame last driven.
+    Vec3 target_velocity = Vec3::Zero();
 };
 
 std::optional<JointRange> joint_range(Joint anchor) {
@@ -358,8 +362,8 @@ void PhysicalHand::drive(const HandPose& goal_pose, const HandPose& previous_tar
             palm_turn * (palm_now * now.position - palm_before * before.position) / frame_dt;
         const LinearState body{from_bt(r.getCenterOfMassPosition()),
                                from_bt(r.getLinearVelocity())};
-        const LinearState aim =
-            contact_aim(*b, body.position, goal, (now.position - before.position) / frame_dt);
+        b->target_velocity = (now.position - before.position) / frame_dt;
+        const LinearState aim = contact_aim(*b, body.position, goal, b->target_velocity);
         b->squeezing = false;
         if (drive_.body_model == BodyModel::BoneCapsules && b->holding && b->touching_movable) {
             const std::optional<Vec3> n = common_direction(b->movable_normal);
@@ -526,14 +530,31 @@ void PhysicalHand::fit_bones(const HandPose& target) {
     }
 }
 
+Vec3 PhysicalHand::closing_move(int body) const {
+    return bodies_[static_cast<std::size_t>(body)]->closing_move;
+}
+
+Vec3 PhysicalHand::target_velocity(int body) const {
+    return bodies_[static_cast<std::size_t>(body)]->target_velocity;
+}
+
+Vec3 PhysicalHand::body_velocity(int body) const {
+    return from_bt(bodies_[static_cast<std::size_t>(body)]->rigid->getLinearVelocity());
+}
+
 void PhysicalHand::close_joint_gaps(double h) {
     if (!drive_.joined_bones) return;
     std::vector<const btRigidBody*> squeezing;
+    std::vector<Vec3> centres;
+    centres.reserve(bodies_.size());
     for (const auto& b : bodies_) {
         if (b->squeezing) squeezing.push_back(b->rigid.get());
+        centres.push_back(from_bt(b->rigid->getCenterOfMassPosition()));
     }
     physhand::close_joint_gaps(joints_, h, squeezing);
-    for (auto& b : bodies_) {
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+        Body* b = bodies_[i].get();
+        b->closing_move = from_bt(b->rigid->getCenterOfMassPosition()) - centres[i];
         const Pose now = from_bt(b->rigid->getWorldTransform());
         b->moved_linear = (now.position - b->substep_start.position) / h;
         b->moved_angular = rotation_between(b->substep_start.orientation, now.orientation) / h;

@@ -69,6 +69,11 @@ class PhysicalHand {
     // With joined bones (DriveSettings::joined_bones), puts every bone back on the body
     // before it after a substep of length h.
     void close_joint_gaps(double h);
+    // How far the last close_joint_gaps moved `body`'s centre, and the body's velocity.
+    Vec3 closing_move(int body) const;
+    Vec3 body_velocity(int body) const;
+    // How fast `body`'s target moved over the frame last driven.
+    Vec3 target_velocity(int body) const;
     // With joined bones, rebuilds each bone capsule whose far end lies more than 3 mm from
     // where `target` has the next joint (seen from the bone's first joint), keeping its
     // start, and places each joint on the body before it where `target` has it: a hand built

@@ -282,6 +282,23 @@ bool World::set_kinematic_target(ColliderHandle handle, const Pose& pose) {
     return true;
 }
 
+void World::carry(ColliderHandle handle, const Vec3& offset, double speed) {
+    Entry* e = find(handle);
+    const double distance = offset.norm();
+    if (!e || e->collider.motion != Motion::Dynamic || distance <= 0.0) return;
+    btRigidBody* body = e->body.get();
+    btTransform t = body->getWorldTransform();
+    t.setOrigin(t.getOrigin() + to_bt(offset));
+    body->setWorldTransform(t);
+    body->setInterpolationWorldTransform(t);
+    const Vec3 direction = offset / distance;
+    const Vec3 velocity = from_bt(body->getLinearVelocity());
+    const double along = velocity.dot(direction);
+    if (along < speed) body->setLinearVelocity(to_bt(velocity + (speed - along) * direction));
+    body->activate(true);
+    world_->updateSingleAabb(body);
+}
+
 bool World::teleport(ColliderHandle handle, const Pose& pose, const Vec3& linear_velocity,
                      const Vec3& angular_velocity) {
     Entry* e = find(handle);

@@ -57,6 +57,9 @@ class World {
     bool set_kinematic_target(ColliderHandle handle, const Pose& pose);
     bool teleport(ColliderHandle handle, const Pose& pose, const Vec3& linear_velocity,
                   const Vec3& angular_velocity);
+    // Moves a dynamic collider by `offset` and gives it at least `speed` along it, keeping its
+    // contacts (teleport forgets them); anything else is left as it is.
+    void carry(ColliderHandle handle, const Vec3& offset, double speed);
     std::optional<BodyState> body_state(ColliderHandle handle) const;
     std::size_t collider_count() const { return colliders_.size(); }
     const Vec3& gravity() const { return settings_.gravity; }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "simulation.h"
+#include "test_scenes.h"
 
 namespace physhand {
 namespace {
@@ -25,13 +26,8 @@ struct Rolling {
         table.friction = 0.6;
         table.pose.position = Vec3(0, kTableTop - 0.025, 0.5);
         sim.add_collider(table);
-        Collider c;
-        c.id = "ball";
-        c.shape.kind = ShapeKind::Sphere;
-        c.shape.radius = radius;
-        c.motion = Motion::Dynamic;
-        c.mass = 0.05;
-        c.pose.position = Vec3(0, kTableTop + radius, 1.2);
+        const Collider c =
+            testing::dynamic_ball("ball", Vec3(0, kTableTop + radius, 1.2), radius, 0.05);
         ball = sim.add_collider(c);
         sim.teleport(ball, c.pose, Vec3(0, 0, -speed), Vec3(-speed / radius, 0, 0));
     }

@@ -132,29 +132,37 @@ TEST(Simulation, AStaticBoxBlocksTheHandWhileTheGhostSinksIn) {
 // A cube dropped flat onto an open palm held up: no corner of the palm comes within reach
 // of a small box falling onto its middle, and two boxes get no contact before they overlap,
 // so a 2 cm cube fell through the palm from 10 cm up (17-19 mm in as shown, then through).
-// The cube's own corners against the palm box stop it.
+// The cube's own corners against the palm box stop it. The joined hand's closing drew the palm,
+// pushed down by the landing cube, back up into it (2.4 mm as shown) before the cube was carried
+// with it.
 TEST(Simulation, ACubeDroppedOntoAnOpenPalmStaysOnIt) {
-    for (const double height : {0.1, 0.2, 0.5}) {
-        for (const double half : {0.01, 0.02}) {
-            SCOPED_TRACE(std::to_string(height) + " m, cube " + std::to_string(2 * half) + " m");
-            Simulation sim(SimulationSettings{}, Vec3(0, -9.81, 0));
-            const HandPose ghost = testing::hand_pose(HandSide::Right, Vec3(0, 1, 0), 0.0,
-                                                      Quat(Eigen::AngleAxisd(M_PI, Vec3::UnitZ())));
-            sim.step_to(1 / 90.0, {HandPose{}, ghost});
-            const HandSolids solids = sim.hand_solids(HandSide::Right);
-            const HandSolid& palm = solids.parts[0];
-            ASSERT_NEAR(std::abs((palm.pose.orientation * Vec3::UnitY()).y()), 1.0, 1e-6);
-            const double palm_top = palm.pose.position.y() + palm.size.y();
-            const ColliderHandle cube = sim.add_collider(
-                dynamic_box("cube", palm.pose.position + Vec3(0, palm.size.y() + half + height, 0),
-                            half, 0.05));
-            double shown = 0.0;
-            for (int f = 2; f <= 120; ++f) {
-                sim.step_to(f / 90.0, {HandPose{}, ghost});
-                shown = std::max(shown, sim.shown_depth(HandSide::Right));
+    for (const char* drive : {"bones", "jointed"}) {
+        for (const double height : {0.1, 0.2, 0.5}) {
+            for (const double half : {0.01, 0.02}) {
+                SCOPED_TRACE(std::string(drive) + ", " + std::to_string(height) + " m, cube " +
+                             std::to_string(2 * half) + " m");
+                SimulationSettings settings;
+                settings.drive = *find_drive(drive);
+                Simulation sim(settings, Vec3(0, -9.81, 0));
+                const HandPose ghost =
+                    testing::hand_pose(HandSide::Right, Vec3(0, 1, 0), 0.0,
+                                       Quat(Eigen::AngleAxisd(M_PI, Vec3::UnitZ())));
+                sim.step_to(1 / 90.0, {HandPose{}, ghost});
+                const HandSolids solids = sim.hand_solids(HandSide::Right);
+                const HandSolid& palm = solids.parts[0];
+                ASSERT_NEAR(std::abs((palm.pose.orientation * Vec3::UnitY()).y()), 1.0, 1e-6);
+                const double palm_top = palm.pose.position.y() + palm.size.y();
+                const ColliderHandle cube = sim.add_collider(dynamic_box(
+                    "cube", palm.pose.position + Vec3(0, palm.size.y() + half + height, 0), half,
+                    0.05));
+                double shown = 0.0;
+                for (int f = 2; f <= 120; ++f) {
+                    sim.step_to(f / 90.0, {HandPose{}, ghost});
+                    shown = std::max(shown, sim.shown_depth(HandSide::Right));
+                }
+                EXPECT_NEAR(sim.body_state(cube)->pose.position.y() - half, palm_top, 0.002);
+                EXPECT_LT(shown, 0.002);
             }
-            EXPECT_NEAR(sim.body_state(cube)->pose.position.y() - half, palm_top, 0.002);
-            EXPECT_LT(shown, 0.002);
         }
     }
 }

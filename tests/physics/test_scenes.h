@@ -49,6 +49,18 @@ inline Collider dynamic_box(const std::string& id, const Vec3& center, double ha
     return c;
 }
 
+inline Collider dynamic_ball(const std::string& id, const Vec3& center, double radius,
+                             double mass) {
+    Collider c;
+    c.id = id;
+    c.shape.kind = ShapeKind::Sphere;
+    c.shape.radius = radius;
+    c.motion = Motion::Dynamic;
+    c.mass = mass;
+    c.pose.position = center;
+    return c;
+}
+
 // Adds white noise of `sigma` per axis to every joint's position.
 class Noisy {
   public:
