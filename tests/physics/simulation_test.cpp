@@ -141,9 +141,7 @@ TEST(Simulation, ACubeDroppedOntoAnOpenPalmStaysOnIt) {
             for (const double half : {0.01, 0.02}) {
                 SCOPED_TRACE(std::string(drive) + ", " + std::to_string(height) + " m, cube " +
                              std::to_string(2 * half) + " m");
-                SimulationSettings settings;
-                settings.drive = *find_drive(drive);
-                Simulation sim(settings, Vec3(0, -9.81, 0));
+                Simulation sim(driven_by(drive), Vec3(0, -9.81, 0));
                 const HandPose ghost =
                     testing::hand_pose(HandSide::Right, Vec3(0, 1, 0), 0.0,
                                        Quat(Eigen::AngleAxisd(M_PI, Vec3::UnitZ())));
