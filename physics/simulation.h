@@ -208,8 +208,9 @@ class Simulation {
     // hold what they touch: another hand part touches it from the opposite side, or it rests
     // on them.
     void note_touches();
-    // Joined bones: moves each dynamic collider that comes into a hand body faster than
-    // kCarriedApproachSpeed as far as the joints' closing moved that body into it.
+    // Joined bones: moves each dynamic collider that comes into a hand body faster than the
+    // body's target moves that way, by over kCarriedApproachSpeed, as far as the joints'
+    // closing moved that body into it.
     void carry_what_the_joints_pushed();
     void publish_hand(HandSlot& slot);
     // The last physics frame at or before `time_s`, and whether `time_s` is within a
