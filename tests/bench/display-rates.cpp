@@ -19,7 +19,8 @@ using namespace physhand;
 namespace {
 
 const std::vector<std::string> kTasks = {"throw", "sphere", "displacement", "stack", "lift_hold"};
-const std::vector<std::pair<std::string, int>> kConfigurations = {{"bones", 1}, {"implicit", 2}};
+const std::vector<std::pair<std::string, int>> kConfigurations = {
+    {"bones", 1}, {"implicit", 2}, {"paper", 4}, {"jointed", 1}};
 const std::vector<DisplayTiming> kTimings = {
     {72.0, 0.0}, {90.0, 0.0}, {120.0, 0.0}, {144.0, 0.0}, {90.0, 2.0}};
 
