@@ -6,6 +6,8 @@
 #include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
 #include <btBulletCollisionCommon.h>
 
+#include "triangle_contact.h"
+
 namespace physhand {
 
 namespace {
@@ -73,7 +75,8 @@ BallContact ball_box_contact(const btVector3& centre, btScalar radius, const btT
 }
 
 std::optional<BallContact> ball_contact(const btVector3& centre, btScalar radius,
-                                        const btCollisionObject& collider, btScalar reach) {
+                                        const btCollisionObject& collider, btScalar reach,
+                                        const btVector3& outside) {
     const btCollisionShape& shape = *collider.getCollisionShape();
     switch (shape.getShapeType()) {
         case STATIC_PLANE_PROXYTYPE:
@@ -82,6 +85,9 @@ std::optional<BallContact> ball_contact(const btVector3& centre, btScalar radius
             return ball_box_contact(
                 centre, radius, collider.getWorldTransform(),
                 static_cast<const btBoxShape&>(shape).getHalfExtentsWithMargin());
+        case TRIANGLE_MESH_SHAPE_PROXYTYPE:
+            return mesh_ball_contact(centre, radius, static_cast<const btConcaveShape&>(shape),
+                                     collider.getWorldTransform(), reach, outside);
         default:
             return convex_contact(centre, radius, collider, reach);
     }

@@ -31,9 +31,11 @@ std::pair<btVector3, btVector3> capsule_ends(const btCapsuleShape& capsule,
 BallContact ball_box_contact(const btVector3& centre, btScalar radius, const btTransform& box,
                              const btVector3& half);
 
-// A ball against a static plane, a box or any other convex collider (by GJK); none when a
-// convex collider is further than `reach`.
+// A ball against a static plane, a box, a static mesh (its nearest triangle, seen from
+// `outside`: triangle_contact.h) or any other convex collider (by GJK); none when a convex
+// collider or every triangle is further than `reach`.
 std::optional<BallContact> ball_contact(const btVector3& centre, btScalar radius,
-                                        const btCollisionObject& collider, btScalar reach);
+                                        const btCollisionObject& collider, btScalar reach,
+                                        const btVector3& outside);
 
 }  // namespace physhand

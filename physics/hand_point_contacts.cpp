@@ -90,7 +90,8 @@ void add_ball_contacts(const btCollisionObject& part, const btCollisionObject& o
     std::size_t n = 0;
     for (int b = 0; b < count; ++b) {
         const Ball& ball = balls[static_cast<std::size_t>(b)];
-        const std::optional<BallContact> c = ball_contact(ball.centre, ball.radius, other, reach);
+        const std::optional<BallContact> c = ball_contact(ball.centre, ball.radius, other, reach,
+                                                          part.getWorldTransform().getOrigin());
         if (c && c->distance < reach) found[n++] = {*c, ball.radius};
     }
     if (part.getCollisionShape()->getShapeType() == BOX_SHAPE_PROXYTYPE && n > kCornersKept) {
@@ -124,7 +125,9 @@ void add_hand_point_contacts(btCollisionDispatcher& dispatcher) {
         if (!is_hand(*hand)) continue;
         const btCollisionShape* other_shape = other->getCollisionShape();
         const int other_type = other_shape->getShapeType();
-        if (other_type != STATIC_PLANE_PROXYTYPE && !other_shape->isConvex()) continue;
+        if (other_type != STATIC_PLANE_PROXYTYPE && other_type != TRIANGLE_MESH_SHAPE_PROXYTYPE &&
+            !other_shape->isConvex())
+            continue;
         const int hand_type = hand->getCollisionShape()->getShapeType();
         // Bullet finds a point of any convex pair within reach but two boxes, which it finds
         // only overlapping: nothing of such a part within reach, none of its balls is.

@@ -17,7 +17,7 @@ struct PairDepth {
 };
 
 // Found afresh by the world's contact algorithms, those the solver's contacts come from (a
-// capsule in a box measured along the capsule, as capsule_box_collision does), with no
+// capsule in a box measured along the capsule, as capsule_collision does), with no
 // manifold's kept points in the way.
 PairDepth pair_depth(btCollisionWorld& world, const btCollisionObject& a,
                      const btCollisionObject& b);

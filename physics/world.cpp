@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "bullet_convert.h"
-#include "capsule_box_collision.h"
+#include "capsule_collision.h"
 #include "face_contacts.h"
 #include "hand_depenetration.h"
 #include "hand_point_contacts.h"
@@ -157,7 +157,7 @@ World::World(const Settings& settings)
       world_(std::make_unique<HandWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
                                          configuration_.get(), settings.max_body_speed)) {
     register_face_contacts(*dispatcher_);
-    register_capsule_box_collision(*dispatcher_);
+    register_capsule_collision(*dispatcher_);
     // A dynamic box against a mesh's triangle: its face clipped against the triangle, as a box
     // on a box is, not one GJK point per pair (collider_shape: only dynamic boxes carry the
     // faces this needs, so no other pair changes). Left alone 60 s on a table of 25 cm

@@ -6,7 +6,7 @@
 #include <random>
 
 #include "ball_contact.h"
-#include "capsule_box_collision.h"
+#include "capsule_collision.h"
 #include "hand_reach_dispatcher.h"
 #include "pair_depth.h"
 #include "world.h"
@@ -21,7 +21,7 @@ const btVector3 kHalf(0.02f, 0.02f, 0.02f);
 // A finger capsule and boxes in a collision world set up as World's is.
 class HandDepenetration : public ::testing::Test {
   protected:
-    HandDepenetration() { register_capsule_box_collision(dispatcher_); }
+    HandDepenetration() { register_capsule_collision(dispatcher_); }
 
     // A body of `role`: dynamic (mass > 0) or fixed.
     btRigidBody& add(btCollisionShape& shape, const btTransform& pose, double mass, BodyRole role) {

@@ -9,7 +9,7 @@
 #include <tuple>
 #include <vector>
 
-#include "capsule_box_collision.h"
+#include "capsule_collision.h"
 #include "hand_reach_dispatcher.h"
 #include "world.h"
 
@@ -29,7 +29,7 @@ enum class Kind { Box, Plane, Hull };
 class EndContacts : public ::testing::TestWithParam<std::tuple<Kind, bool>> {
   protected:
     void SetUp() override {
-        register_capsule_box_collision(dispatcher_);
+        register_capsule_collision(dispatcher_);
         switch (std::get<0>(GetParam())) {
             case Kind::Box:
                 collider_shape_ = std::make_unique<btBoxShape>(btVector3(0.1f, kTop, 0.1f));

@@ -1,4 +1,4 @@
-#include "capsule_box_collision.h"
+#include "capsule_collision.h"
 
 #include <btBulletCollisionCommon.h>
 #include <gtest/gtest.h>
@@ -30,7 +30,7 @@ class CapsuleBoxCollision : public ::testing::TestWithParam<bool> {};
 TEST_P(CapsuleBoxCollision, FindsTheSegmentsNearestPointAsDenseSamplingDoes) {
     btDefaultCollisionConfiguration configuration;
     btCollisionDispatcher dispatcher(&configuration);
-    register_capsule_box_collision(dispatcher);
+    register_capsule_collision(dispatcher);
     btDbvtBroadphase broadphase;
     btCollisionWorld world(&dispatcher, &broadphase, &configuration);
     btBoxShape box_shape(kHalf);
