@@ -11,7 +11,8 @@
 namespace physhand {
 
 // How the physical hand is built: a sphere per joint (as in the paper), or a palm box
-// plus a capsule per bone (no gaps between joints, orientation carries friction).
+// plus a capsule per bone (no gaps between joints, orientation carries friction), each bone
+// joined to the body before it within a human joint's range (bone_joints).
 enum class BodyModel { JointSpheres, BoneCapsules };
 
 // The law that turns a ghost target into a force each substep.
@@ -33,11 +34,11 @@ struct DriveSettings {
     double force_limit = 0.0;
     int substeps = 4;          // per 90 Hz frame
     GhostSmoothing smoothing;  // of the ghost before the drive follows it
-    // Bone capsules only: each bone stays joined to the body before it (bone_joints).
-    bool joined_bones = false;
     // How many moves a hand part is given each substep to leave what it went into
     // (hand_depenetration.h).
     int depenetration_moves = 1;
+
+    bool joined_bones() const { return body_model == BodyModel::BoneCapsules; }
 };
 
 // No drive force exceeds this, whatever the limit: past it, an explicit drive's overshoot
@@ -51,6 +52,8 @@ inline constexpr int kMaxSubsteps = 64;
 // The drives the project ships; the first is the default.
 const std::vector<DriveSettings>& builtin_drives();
 const DriveSettings& default_drive();
+// A builtin drive by name. "jointed", the joined bones' name while `bones` was not joined yet,
+// finds `bones`: configs and the extension's XR_HAND_DRIVE_KIND_JOINTED_PHYSHAND still use it.
 std::optional<DriveSettings> find_drive(std::string_view name);
 
 // Force for one body over one substep of length h. Targets are the ghost at the end of
@@ -59,9 +62,8 @@ struct LinearState {
     Vec3 position;
     Vec3 velocity;
 };
-// `strength` scales the drive's force limit for this body.
 Vec3 drive_force(const DriveSettings& drive, double mass, const LinearState& body,
-                 const LinearState& target, double h, double strength = 1.0);
+                 const LinearState& target, double h);
 
 // Torque for one body: `inertia_world` is the body's world inertia tensor. A body `resting` on
 // what it cannot move (a static or kinematic collider, and nothing it could move) turns

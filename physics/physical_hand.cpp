@@ -27,24 +27,13 @@ constexpr double kPalmMass = 0.3;
 // the layer's own (app_push, 10 allowed); spinning resistance let the cube slip 0.4-2.2 mm.
 constexpr double kHandFriction = 1.0;
 // How far a bone's ghost must reach into what it holds, past the palm's lag behind its own
-// ghost, for the bone to count as squeezing it (kThumbSqueezeStrength; with joined bones,
-// close_joint_gaps holds it where it is).
+// ghost, for the bone to count as squeezing it (close_joint_gaps then holds it where it is).
 // lift_hold squeezed to curls 0.3-1.0 over 4 shifts: 15 of 32 held (8 before), contact points
 // at most 3.3 mm deep (8.0). The palm's lag is taken off so that a hand swinging what it holds
 // (a throw's wind-up), which trails its whole ghost alike, squeezes nothing: measured from the
 // ghost alone, the thumb behind a thrown cube counted as squeezing for 17 substeps, and throws
 // under 3 mm of noise missed (robustness, jointed/1, 3200 plays, 10 sweeps: 2999 against 3017).
 constexpr double kSqueezeReach = 0.01;
-// A thumb bone that squeezes pushes up to twice the force limit: one thumb opposes four
-// fingers, and at the limit of a finger bone it gave way to them. lift_hold squeezed to
-// curls 0.3-1.0 over 16 shifts, bones/1: 124 of 128 held (113), contact points at most 2.7 mm
-// deep (4.4); 1.5 and 3 times held as many over 8 shifts. Always twice as strong, the thumb pushed
-// the thrown cube harder and lower (robustness, bones/1, 400 plays: 384 -> 358, the throw
-// missing pyramid_10); only while squeezing, 3062 of 3200 plays (3061). Unjoined bones only:
-// the joined thumb, bent back by the squeeze, slides off the cube however hard it pushes
-// (jointed/1, 128 squeezes: 44 held against 48; 75 against 74 once a squeezing bone took no
-// velocity from its joints' closing).
-constexpr double kThumbSqueezeStrength = 2.0;
 constexpr double kMinRadius = 0.004;
 // Every hand body turns like a 10 cm ball of its mass. A finger capsule's own inertia about
 // its axis is so small that the contact solver would rather roll it than move what the
@@ -345,7 +334,7 @@ void PhysicalHand::seat(const HandPose& target, const HandPose& previous_target,
 
 void PhysicalHand::drive(const HandPose& goal_pose, const HandPose& previous_target,
                          const HandPose& target, double frame_dt, double h) {
-    if (drive_.joined_bones) refit_joints(goal_pose, h);
+    if (drive_.joined_bones()) refit_joints(goal_pose, h);
     const Pose palm_before = previous_target[Joint::Palm].inverse();
     const Pose palm_now = target[Joint::Palm].inverse();
     const Quat palm_turn = target[Joint::Palm].orientation;
@@ -354,7 +343,7 @@ void PhysicalHand::drive(const HandPose& goal_pose, const HandPose& previous_tar
         from_bt(palm.rigid->getCenterOfMassPosition()) - target_of(palm, goal_pose).position;
     for (auto& b : bodies_) {
         btRigidBody& r = *b->rigid;
-        if (drive_.joined_bones) b->substep_start = from_bt(r.getWorldTransform());
+        if (drive_.joined_bones()) b->substep_start = from_bt(r.getWorldTransform());
         const Pose goal = target_of(*b, goal_pose);
         const Pose before = target_of(*b, previous_target);
         const Pose now = target_of(*b, target);
@@ -365,15 +354,11 @@ void PhysicalHand::drive(const HandPose& goal_pose, const HandPose& previous_tar
         b->target_velocity = (now.position - before.position) / frame_dt;
         const LinearState aim = contact_aim(*b, body.position, goal, b->target_velocity);
         b->squeezing = false;
-        if (drive_.body_model == BodyModel::BoneCapsules && b->holding && b->touching_movable) {
+        if (drive_.joined_bones() && b->holding && b->touching_movable) {
             const std::optional<Vec3> n = common_direction(b->movable_normal);
             b->squeezing = n && (body.position - goal.position - palm_lag).dot(*n) > kSqueezeReach;
         }
-        const bool thumb = b->anchor == Joint::ThumbMetacarpal ||
-                           b->anchor == Joint::ThumbProximal || b->anchor == Joint::ThumbDistal;
-        const bool stronger = thumb && b->squeezing && !drive_.joined_bones;
-        const Vec3 force =
-            drive_force(drive_, b->mass, body, aim, h, stronger ? kThumbSqueezeStrength : 1.0);
+        const Vec3 force = drive_force(drive_, b->mass, body, aim, h);
         r.applyCentralForce(to_bt(force));
         b->last_force = force.norm();
         if (drive_.drive_orientation) {
@@ -454,7 +439,7 @@ void PhysicalHand::clear_touches() {
 void PhysicalHand::note_touch(int body, Motion motion, const Vec3& normal, double gap, bool holds,
                               const Vec3& velocity) {
     Body& b = *bodies_[static_cast<std::size_t>(body)];
-    // Near a static collider (joined bones only, Simulation::collect_contacts), a body rests on
+    // Near a static collider (bones only, Simulation::collect_contacts), a body rests on
     // it as one touching it does (drive aim and turning gains): held a hair above a table by
     // their joints, bones that rested only on the substeps they touched it switched between
     // pressing on and resting every substep (jointed, press_table: joints 0.15 mm RMS frame to
@@ -487,7 +472,7 @@ void PhysicalHand::refit_joints(const HandPose& goal, double h) {
 }
 
 void PhysicalHand::fit_bones(const HandPose& target) {
-    if (!drive_.joined_bones) return;
+    if (!drive_.joined_bones()) return;
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
         Body& b = *bodies_[i];
         if (b.shape->getShapeType() != CAPSULE_SHAPE_PROXYTYPE) continue;
@@ -543,7 +528,7 @@ Vec3 PhysicalHand::body_velocity(int body) const {
 }
 
 void PhysicalHand::close_joint_gaps(double h) {
-    if (!drive_.joined_bones) return;
+    if (!drive_.joined_bones()) return;
     std::vector<const btRigidBody*> squeezing;
     std::vector<Vec3> centres;
     centres.reserve(bodies_.size());
@@ -608,7 +593,7 @@ void PhysicalHand::read(const HandPose& target, PhysicalHandState& out) const {
             joint.position = body * local;
         }
         out.joints.joints[j] = joint;
-        const bool joined = drive_.joined_bones;
+        const bool joined = drive_.joined_bones();
         const Vec3 w = joined ? b.moved_angular : from_bt(r.getAngularVelocity());
         out.angular_velocity[j] = w;
         out.linear_velocity[j] = (joined ? b.moved_linear : from_bt(r.getLinearVelocity())) +

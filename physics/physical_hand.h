@@ -49,10 +49,10 @@ class PhysicalHand {
     void drive(const HandPose& goal, const HandPose& previous_target, const HandPose& target,
                double frame_dt, double h);
     // What bodies touched in the last substep (`normal`: from the collider toward the body;
-    // `gap`: 0, or how far a movable collider (or a static one, for joined bones) lay from a
+    // `gap`: 0, or how far a movable collider (or a static one, for bones) lay from a
     // body it did not touch, under kLonePressGive; `holds`: on a movable collider, another hand
     // part touches it from the opposite side or it rests on this body): a body that rests on
-    // what it cannot move (a joined bone: or nears a static collider) turns more softly, one
+    // what it cannot move (a bone: or nears a static collider) turns more softly, one
     // that rests on static colliders alone presses no deeper than kRestingPressDepth into them,
     // and one that presses or nears movable colliders without holding them gives up
     // kLonePressGive of its reach (near as well as touching, so that it does not press in again
@@ -66,7 +66,7 @@ class PhysicalHand {
     // the body, whether the body holds it (Simulation::note_touches), its velocity there.
     void note_touch(int body, Motion motion, const Vec3& normal, double gap, bool holds,
                     const Vec3& velocity);
-    // With joined bones (DriveSettings::joined_bones), puts every bone back on the body
+    // With bone capsules (DriveSettings::joined_bones), puts every bone back on the body
     // before it after a substep of length h.
     void close_joint_gaps(double h);
     // How far the last close_joint_gaps moved `body`'s centre, and the body's velocity.

@@ -667,7 +667,8 @@ void Simulation::carry_what_the_joints_pushed() {
     // Per collider: the longest push into it, and the speed of the body that pushed.
     std::map<ColliderHandle, std::pair<Vec3, double>> pushes;
     for (const HandTouch& t : touches_) {
-        if (t.motion != Motion::Dynamic || t.gap > 0.0 || !t.hand->drive_settings().joined_bones ||
+        if (t.motion != Motion::Dynamic || t.gap > 0.0 ||
+            !t.hand->drive_settings().joined_bones() ||
             (t.collider_velocity - t.hand->target_velocity(t.body)).dot(t.normal) <
                 kCarriedApproachSpeed)
             continue;
@@ -700,12 +701,10 @@ void Simulation::collect_contacts(ContactIndex& contact_index, ColliderIndex& co
         gaps_.push_back(
             {slot.body.get(), body, c.normal, near ? c.distance : 0.0, c.collider_velocity});
         if (near) {
-            // Near a static collider, only a joined bone rests on it (PhysicalHand::note_touch);
-            // an unjoined one lands on it. Resting near it too, bones/1 played as before within
-            // the benchmark's churn, but the displacement task's cube, placed under 3 mm of noise
-            // (seed 1), ended in its hole at 8 of 16 shifts, against 14.
-            if (c.distance < kLonePressGive &&
-                (c.collider_motion != Motion::Static || slot.body->drive_settings().joined_bones)) {
+            // Near a static collider, only a bone rests on it (PhysicalHand::note_touch); a joint
+            // sphere lands on it.
+            if (c.distance < kLonePressGive && (c.collider_motion != Motion::Static ||
+                                                slot.body->drive_settings().joined_bones())) {
                 touches_.push_back({slot.body.get(), body, c.collider_motion, c.normal, c.collider,
                                     c.distance, 0.0, c.collider_velocity});
             }

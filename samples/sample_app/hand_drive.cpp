@@ -17,8 +17,6 @@ void set_hand_drive(XrInstance instance, XrSession session, const DriveSettings&
         info.drive = XR_HAND_DRIVE_KIND_IMPLICIT_PHYSHAND;
     } else if (drive.name == "bones") {
         info.drive = XR_HAND_DRIVE_KIND_BONES_PHYSHAND;
-    } else if (drive.name == "jointed") {
-        info.drive = XR_HAND_DRIVE_KIND_JOINTED_PHYSHAND;
     } else {
         throw std::runtime_error("the extension has no drive kind for \"" + drive.name + "\"");
     }

@@ -26,7 +26,7 @@ constexpr const char* kUsage =
     "                  (XR_KHR_vulkan_enable2), drawing colliders and hands\n"
     "  --live          for a headset: scenes never end on their own; type a line on stdin:\n"
     "                  r (reset the scene), n (next scene file), q (quit)\n"
-    "  --drive NAME    the hand drive the sample sets (bones, implicit, paper, jointed;\n"
+    "  --drive NAME    the hand drive the sample sets (bones, implicit, paper;\n"
     "                  default: the default drive, whatever the layer's config says)\n"
     "  --substeps N    physics substeps per frame, 1 to 64 (default: the drive's own)\n"
     "  --hover-cm X    objects start to turn translucent within X cm of a hand (default 3;\n"

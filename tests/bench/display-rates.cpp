@@ -20,7 +20,7 @@ namespace {
 
 const std::vector<std::string> kTasks = {"throw", "sphere", "displacement", "stack", "lift_hold"};
 const std::vector<std::pair<std::string, int>> kConfigurations = {
-    {"bones", 1}, {"implicit", 2}, {"paper", 4}, {"jointed", 1}};
+    {"bones", 1}, {"implicit", 2}, {"paper", 4}};
 const std::vector<DisplayTiming> kTimings = {
     {72.0, 0.0}, {90.0, 0.0}, {120.0, 0.0}, {144.0, 0.0}, {90.0, 2.0}};
 

@@ -129,7 +129,7 @@ TEST(Gating, AnObjectThrownIntoTheJoinedHandStaysOutOfIt) {
                 SCOPED_TRACE(name + " at " + std::to_string(speed) + " m/s at " +
                              std::string(joint_name(aimed)));
                 const ThrowAtTheOpenHand thrown =
-                    throw_at_the_open_hand(*find_drive("jointed"), object, speed, aimed);
+                    throw_at_the_open_hand(default_drive(), object, speed, aimed);
                 EXPECT_LT(thrown.shown, 0.005);
                 EXPECT_LT(thrown.penetration, 0.005);
             }

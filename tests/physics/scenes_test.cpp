@@ -20,16 +20,10 @@ namespace {
 
 class SampleScene : public ::testing::TestWithParam<std::string> {};
 
-// `scene` played frame by frame by a jointed hand following the scene's script.
-RunOptions jointed_drive() {
-    RunOptions jointed;
-    jointed.drive = "jointed";
-    return jointed;
-}
-
-struct JointedPlay {
-    explicit JointedPlay(const Scene& scene)
-        : sim(settings_for(jointed_drive()), scene.gravity), tracked(scene) {
+// `scene` played frame by frame by the default hand following the scene's script.
+struct ScenePlay {
+    explicit ScenePlay(const Scene& scene)
+        : sim(settings_for(RunOptions{}), scene.gravity), tracked(scene) {
         for (const Collider& c : scene.colliders) sim.add_collider(c);
     }
     void step(int frame) {
@@ -60,7 +54,8 @@ INSTANTIATE_TEST_SUITE_P(Measurement, SampleScene,
 INSTANTIATE_TEST_SUITE_P(AppEngine, SampleScene, ::testing::Values("app_push"));
 
 // The coupling recipe (an app's own engine, the hands' impulses) pushes the cube as the
-// hands' simulation pushes one of its own: into the region, within 1 cm of it.
+// hands' simulation pushes one of its own: into the region, within 1.5 cm of it (12.9 mm;
+// the unjoined hand's, under 1 cm).
 TEST(SampleScenes, AnAppsOwnCubeIsPushedAsTheLayersOwnWouldBe) {
     const Scene coupled = testing::sample_scene("app_push");
     Scene own = coupled;
@@ -73,7 +68,7 @@ TEST(SampleScenes, AnAppsOwnCubeIsPushedAsTheLayersOwnWouldBe) {
                             [](const auto& body) { return body.first == "cube"; })
             ->second.position;
     };
-    EXPECT_LT((end(a) - end(b)).norm(), 0.01) << end(a).transpose() << " / " << end(b).transpose();
+    EXPECT_LT((end(a) - end(b)).norm(), 0.015) << end(a).transpose() << " / " << end(b).transpose();
 }
 
 // Pushed near its top, a 16 cm post the app keeps to itself falls over as the layer's own
@@ -100,36 +95,38 @@ TEST(SampleScenes, AnAppsOwnPostTipsOverAsTheLayersOwnWould) {
     EXPECT_LT((a.bodies.front().second.position - b.bodies.front().second.position).norm(), 0.02);
 }
 
-// The jointed drive (issue 19): every scene a bones hand plays, played with each bone kept
-// on the one before it and on the palm. Unjoined, the bones part by up to 53 mm
-// (displacement: fingers stopped by the wall while the hand goes on). Under tracking noise
-// (jitter) the hand is built from a noisy first sample: its joints move at once to where the
-// next ghosts have them while it touches nothing (at 0.6 m/s: 2.98 mm apart in the third
-// frame).
-TEST(SampleScenes, AJointedHandStaysInOnePiece) {
-    const RunOptions jointed = jointed_drive();
+// Every scene played with each bone kept on the one before it and on the palm (issue 19).
+// Unjoined, the bones parted by up to 53 mm (displacement: fingers stopped by the wall while
+// the hand goes on; press_table: the thumb's base 2 cm above where the palm, flat on the
+// table, puts it). Under tracking noise (jitter) the hand is built from a noisy first sample:
+// its joints move at once to where the next ghosts have them while it touches nothing (at
+// 0.6 m/s: 2.98 mm apart in the third frame). The figure is measured, not a constant.
+TEST(SampleScenes, TheHandStaysInOnePiece) {
     for (const char* name : {"throw", "sphere", "displacement", "stack", "free_motion",
-                             "press_table", "lift_hold", "jitter"}) {
-        const RunResult r = run_scene(testing::sample_scene(name), jointed);
+                             "press_table", "lift_hold", "jitter", "app_push"}) {
+        const RunResult r = run_scene(testing::sample_scene(name), RunOptions{});
         EXPECT_TRUE(r.success) << name;
         EXPECT_EQ(r.metrics.nonfinite_count, 0) << name;
         EXPECT_LT(r.metrics.max_joint_gap_mm, 1.0) << name;
+        if (std::string(name) == "free_motion") {
+            EXPECT_GT(r.metrics.max_joint_gap_mm, 0.0);
+        }
     }
 }
 
-// Squeezed ever tighter (lift_hold's final curls 0.3 to 1.0), the jointed hand stays in one
-// piece and holds the cube in most squeezes: a bone the cube stops is held there while the
+// Squeezed ever tighter (lift_hold's final curls 0.3 to 1.0), the hand stays in one piece and
+// holds the cube in most squeezes: a bone the cube stops is held there while the
 // bones before it bend, and takes no velocity from that closing. Moved by its share instead,
 // each finger passed its whole curl on into the cube, which slipped out past the thumb from a
 // curl of 0.5 (2 of 8 held), contact points 7 mm deep; taking the closing's move as velocity,
 // 4 of 8 held. A cube spinning out of the grip swept an edge 3.2 mm into the thumb (curl 0.7)
 // while a joined bone had one move to leave it.
-TEST(SampleScenes, AJointedHandSqueezingTightHoldsInOnePiece) {
-    const RunOptions jointed = jointed_drive();
+TEST(SampleScenes, AHandSqueezingTightHoldsInOnePiece) {
     int held = 0;
     for (int step = 0; step < 8; ++step) {
         const double curl = 0.3 + 0.1 * step;
-        const RunResult r = run_scene(squeezed(testing::sample_scene("lift_hold"), curl), jointed);
+        const RunResult r =
+            run_scene(squeezed(testing::sample_scene("lift_hold"), curl), RunOptions{});
         held += r.success ? 1 : 0;
         EXPECT_LT(r.metrics.max_joint_gap_mm, 0.35) << curl;
         EXPECT_LT(r.metrics.max_penetration_mm, 2.0) << curl;
@@ -137,12 +134,12 @@ TEST(SampleScenes, AJointedHandSqueezingTightHoldsInOnePiece) {
     EXPECT_GE(held, 5);
 }
 
-// The jointed hand's bones bend within a human hand's ranges: in displacement, where the wall
+// The hand's bones bend within a human hand's ranges: in displacement, where the wall
 // catches the fingers that push the cube in, joints without ranges folded a fingertip fully
 // back (180 degrees), bent a middle joint 47 degrees back and twisted one by 103.
-TEST(SampleScenes, AJointedHandBendsAsAHandDoes) {
+TEST(SampleScenes, AHandBendsAsAHandDoes) {
     const Scene scene = testing::sample_scene("displacement");
-    JointedPlay play(scene);
+    ScenePlay play(scene);
     double furthest = 0.0;  // past a range, radians
     for (int f = 1; frame_time_s(f) < scene.duration_s; ++f) {
         play.step(f);
@@ -167,7 +164,7 @@ TEST(SampleScenes, AJointedHandBendsAsAHandDoes) {
 // still: once the hand is still, its joints report no motion. Each bone reported its Bullet
 // velocity, and the joints, still, up to 2.5 m/s: every substep the joint closing moved the
 // caught bones into the bar, adding the move as velocity, and a contact pushed them back.
-TEST(JointedHand, FingersCaughtAtABarReportTheMotionTheyMake) {
+TEST(SampleScenes, FingersCaughtAtABarReportTheMotionTheyMake) {
     const Scene scene = parse_scene(R"({
       "format": "physhand-scene/1", "name": "caught_at_a_bar", "duration_s": 5.0,
       "colliders": [{"id": "bar", "shape": "box", "half_extents": [0.2, 0.01, 0.01],
@@ -180,7 +177,7 @@ TEST(JointedHand, FingersCaughtAtABarReportTheMotionTheyMake) {
         {"t": 3.5, "wrist": {"position": [0.1222, 0.985, -0.26]}},
         {"t": 5.0, "wrist": {"position": [0.1222, 0.985, -0.26]}}]}}})",
                                     ".");
-    JointedPlay play(scene);
+    ScenePlay play(scene);
     HandPose before;
     double widest_gap = 0.0, most_moved = 0.0, fastest = 0.0;
     for (int f = 1; frame_time_s(f) < scene.duration_s; ++f) {
@@ -215,14 +212,15 @@ TEST(SampleScenes, EverySceneFileIsCoveredAbove) {
 // must neither sink in by more than the benchmark resolves (5 mm before hands found contacts
 // 2 cm ahead; 0.26 mm where a finger capsule landed along the table, before each capsule end
 // had a contact of its own; 0.025 mm where the palm box landed, before its corners had;
-// 0.02 mm with fingers pulled into the table, before warm starting took half the impulses)
-// nor chatter, which shows as tracking error on the joints that lose contact (10 mm rms
-// before).
+// 0.02 mm with fingers pulled into the table, before warm starting took half the impulses;
+// joined, 0.075 mm) nor chatter, which shows as motion of the still hand (rest_jitter_mm).
+// Its tracking error counts the palm, which the ball of the thumb holds 3 mm off the table
+// (touching nothing, 5 cm above its ghost): 19 mm RMS.
 TEST(SampleScenes, DefaultHandPressesAndGripsWithoutSinkingOrChatter) {
     ASSERT_EQ(default_drive().substeps, 1);
     const RunResult press = run_scene(testing::sample_scene("press_table"), RunOptions{});
-    EXPECT_LT(press.metrics.max_penetration_mm, 0.01);
-    EXPECT_LT(press.metrics.tracking_error_rms_mm, 0.1);
+    EXPECT_LT(press.metrics.max_penetration_mm, 0.1);
+    EXPECT_LT(press.metrics.rest_jitter_mm, 0.1);
     const RunResult lift = run_scene(testing::sample_scene("lift_hold"), RunOptions{});
     EXPECT_LT(lift.metrics.max_penetration_mm, 1.0);
     ASSERT_TRUE(lift.predicates.at(0).slip_mm);
@@ -250,20 +248,20 @@ Scene pitched_press_table() {
 }
 
 // A still ghost pressed into a table: the returned joints stay still (rest_jitter_mm), with the
-// palm flat on it and with the hand pitched so the fingers press first, joined or not (joined
-// bones held a hair above the table by their joints shook 0.15-0.18 mm while they counted as
-// resting only when touching it).
+// palm flat on it and with the hand pitched so the fingers press first (bones held a hair above
+// the table by their joints shook 0.15-0.18 mm while they counted as resting only when touching
+// it), and sink no further into it than the contacts resolve.
 TEST(SampleScenes, AHandRestingOnATableIsQuiet) {
     ASSERT_EQ(default_drive().substeps, 1);
-    const RunOptions jointed = jointed_drive();
-    for (const RunOptions& run : {RunOptions{}, jointed}) {
-        SCOPED_TRACE(run.drive.value_or("default"));
-        EXPECT_LT(run_scene(testing::sample_scene("press_table"), run).metrics.rest_jitter_mm, 0.1);
-        const RunResult pitched = run_scene(pitched_press_table(), run);
-        EXPECT_LT(pitched.metrics.rest_jitter_mm, 0.1);
-        if (!run.drive) {
-            EXPECT_LT(pitched.metrics.max_penetration_mm, 0.1);
-        }
+    for (const Scene& scene : {testing::sample_scene("press_table"), pitched_press_table()}) {
+        SCOPED_TRACE(scene.name);
+        const RunResult r = run_scene(scene, RunOptions{});
+        EXPECT_LT(r.metrics.rest_jitter_mm, 0.1);
+        EXPECT_LT(r.metrics.max_penetration_mm, 1.0);  // pitched: 0.52
+        // The thumb's first bone, as shown, 5.8 mm into the table (pitched: 9.2): the palm box
+        // cannot lie as low as the ball of the thumb, and the joints' closing, after the
+        // contacts, pulls it down after the palm (docs/design.md).
+        EXPECT_LT(r.metrics.max_shown_depth_mm, 10.0);
     }
 }
 
@@ -300,12 +298,8 @@ TEST(SampleScenes, AHandPressedOnATableOfTrianglesRestsOnItAsOnABox) {
         EXPECT_TRUE(r.success);
         EXPECT_LT(r.metrics.rest_jitter_mm, 0.1);
         EXPECT_LT(r.metrics.max_penetration_mm, 0.5);
-        EXPECT_LT(r.metrics.max_shown_depth_mm, 1.0);
-        EXPECT_LT(r.metrics.max_joint_gap_mm, 25.0);  // unjoined, as on the box: 19.9
-        const RunResult joined =
-            run_scene(press_table_of_triangles(other_diagonal), jointed_drive());
-        EXPECT_LT(joined.metrics.rest_jitter_mm, 0.1);
-        EXPECT_LT(joined.metrics.max_penetration_mm, 0.5);
+        EXPECT_LT(r.metrics.max_joint_gap_mm, 1.0);
+        EXPECT_LT(r.metrics.max_shown_depth_mm, 10.0);  // the ball of the thumb: 9.1, box 5.8
     }
 }
 
@@ -333,23 +327,6 @@ TEST(SampleScenes, AHandPressedIntoATableStaysOverItsGhost) {
         }
         EXPECT_LT(furthest, 0.005);
     }
-}
-
-// max_joint_gap_mm: a free hand's bones stay together; pressed 5 cm into a table, the
-// unjointed hand comes apart by centimetres (issue 19: bones are not yet joined): the palm
-// box lies flatter on the table than the thumb's capsule can, so the thumb's base sits 2 cm
-// above where the palm puts it. The figure shows it.
-TEST(SampleScenes, TheGapsBetweenBonesAreMeasured) {
-    const RunResult free = run_scene(testing::sample_scene("free_motion"), RunOptions{});
-    EXPECT_GT(free.metrics.max_joint_gap_mm, 0.0);
-    EXPECT_LT(free.metrics.max_joint_gap_mm, 1.0);
-    const RunResult press = run_scene(testing::sample_scene("press_table"), RunOptions{});
-    EXPECT_GT(press.metrics.max_joint_gap_mm, 10.0);
-    // Noise on each joint changes the ghost's bone lengths; the capsules, built once, follow
-    // their own joints and open gaps between them (measured 13.7 mm; placed at the ghost's
-    // offsets instead, the joints read 0.6 mm apart).
-    const RunResult noisy = run_scene(testing::sample_scene("jitter"), RunOptions{});
-    EXPECT_GT(noisy.metrics.max_joint_gap_mm, 5.0);
 }
 
 TEST(SampleScenes, HeldObjectBarelySlipsAndGatedHandsAreExact) {

@@ -58,12 +58,19 @@ TEST(Drive, ForceLimitCapsTheMagnitudeNotTheDirection) {
     EXPECT_NEAR(f.normalized().dot(Vec3(-1, -1, 0).normalized()), 1.0, 1e-12);
 }
 
-TEST(Drive, StrengthScalesTheForceLimit) {
+TEST(Drive, ABoneFarFromItsGhostPullsAtTheForceLimit) {
     DriveSettings d = drive_named("bones");
     const LinearState far{Vec3(1, 0, 0), Vec3::Zero()};
     const LinearState ghost{Vec3::Zero(), Vec3::Zero()};
     EXPECT_NEAR(drive_force(d, 0.1, far, ghost, 0.01).norm(), d.force_limit, 1e-9);
-    EXPECT_NEAR(drive_force(d, 0.1, far, ghost, 0.01, 2.0).norm(), 2.0 * d.force_limit, 1e-9);
+}
+
+// Configs and the extension's JOINTED kind still name the joined bones by their older name.
+TEST(Drive, JointedIsTheBonesDriveByItsOlderName) {
+    const DriveSettings jointed = drive_named("jointed");
+    EXPECT_EQ(jointed.name, "bones");
+    EXPECT_TRUE(jointed.joined_bones());
+    EXPECT_FALSE(drive_named("implicit").joined_bones());
 }
 
 // Symplectic Euler, as Bullet integrates: the paper's gains on a 15 g body at 90 Hz

@@ -115,10 +115,10 @@ typedef enum XrHandDriveKindPHYSHAND {
     XR_HAND_DRIVE_KIND_PAPER_PHYSHAND = 1,
     /* The same law solved implicitly (stable proportional-derivative) on joint spheres. */
     XR_HAND_DRIVE_KIND_IMPLICIT_PHYSHAND = 2,
-    /* Implicit drive of a palm box and one capsule per bone, orientation driven too. */
+    /* Implicit drive of a palm box and one capsule per bone, orientation driven too, every
+    ** bone kept joined to the one before it and to the palm. */
     XR_HAND_DRIVE_KIND_BONES_PHYSHAND = 3,
-    /* Since spec version 4: the bones drive with every bone kept joined to the one before it
-    ** and to the palm. */
+    /* Since spec version 4: the bones drive (the name it had while it alone was joined). */
     XR_HAND_DRIVE_KIND_JOINTED_PHYSHAND = 4,
     XR_HAND_DRIVE_KIND_MAX_ENUM_PHYSHAND = 0x7FFFFFFF
 } XrHandDriveKindPHYSHAND;
